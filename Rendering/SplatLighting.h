@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SplatLighting.h
+ * @brief Deferred per-pixel shading of splats with the lighting model of VTK's OpenGL2 polydata
+ * shader (ambient + diffuse + Phong specular, headlight, directional and positional lights with
+ * attenuation and spot cones), so splats and triangles lit by the same vtkLight and vtkProperty
+ * look the same. VTK-free (GLM only). All vectors are in eye coordinates.
+ */
+#ifndef SplatLighting_h
+#define SplatLighting_h
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <vector>
+
+namespace splat
+{
+
+struct Light
+{
+  glm::vec3 Color{ 1.0f };             ///< diffuse color times intensity
+  glm::vec3 Direction{ 0, 0, -1 };     ///< direction the light travels, unit
+  bool Positional = false;
+  glm::vec3 Position{ 0.0f };          ///< for positional lights
+  glm::vec3 Attenuation{ 1, 0, 0 };    ///< constant, linear, quadratic
+  float ConeCosine = -1.0f;            ///< cos(cone angle); spots only when >= 0 and angle < 90
+  float Exponent = 1.0f;               ///< spot exponent
+};
+
+/**
+ * The vtkProperty terms. The surface color (a point's scalar color or the property's diffuse
+ * color, filtered across splats) is multiplied in at shading time: into the diffuse term always
+ * and into the ambient term when AmbientFromColor is set (VTK's default for scalar coloring).
+ */
+struct Material
+{
+  float Ambient = 0.0f;
+  glm::vec3 AmbientColor{ 1.0f };
+  bool AmbientFromColor = false;
+  float Diffuse = 1.0f;
+  glm::vec3 Specular{ 0.0f }; ///< specular coefficient times specular color
+  float SpecularPower = 1.0f;
+};
+
+/**
+ * Shades a surface point of color `color` at eye position `position` with unit normal `normal`
+ * facing the viewer. With no lights (lighting off) the result is ambient + diffuse, as in VTK.
+ */
+inline glm::vec3 Shade(const std::vector<Light>& lights, const Material& material,
+  const glm::vec3& color, const glm::vec3& position, const glm::vec3& normal)
+{
+  const glm::vec3 ambient =
+    material.Ambient * (material.AmbientFromColor ? color : material.AmbientColor);
+  const glm::vec3 diffuseColor = material.Diffuse * color;
+  if (lights.empty())
+  {
+    return ambient + diffuseColor;
+  }
+  const glm::vec3 toEye = glm::normalize(-position);
+  glm::vec3 diffuse(0.0f), specular(0.0f);
+  for (const Light& light : lights)
+  {
+    glm::vec3 direction = light.Direction;
+    float attenuation = 1.0f;
+    if (light.Positional)
+    {
+      const glm::vec3 fromLight = position - light.Position;
+      const float distance = glm::length(fromLight);
+      direction = fromLight / distance;
+      attenuation = 1.0f /
+        (light.Attenuation.x + distance * (light.Attenuation.y + distance * light.Attenuation.z));
+      if (light.ConeCosine >= 0.0f)
+      {
+        const float coneDot = glm::dot(direction, light.Direction);
+        attenuation = coneDot >= light.ConeCosine ? attenuation * std::pow(coneDot, light.Exponent)
+                                                  : 0.0f;
+      }
+    }
+    const float df = std::max(0.0f, -glm::dot(normal, direction));
+    diffuse += attenuation * df * light.Color;
+    if (df > 0.0f)
+    {
+      const glm::vec3 reflected = glm::reflect(direction, normal);
+      const float sf =
+        std::pow(std::max(0.0f, glm::dot(reflected, toEye)), material.SpecularPower);
+      specular += attenuation * sf * light.Color;
+    }
+  }
+  return ambient + diffuse * diffuseColor + specular * material.Specular;
+}
+
+} // namespace splat
+
+#endif

@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SplatSurfelKernel.h
+ * @brief Screen-space EWA resampling kernel of one surfel (Zwicker et al. 2001, eq. 6-9).
+ *
+ * VTK-free (GLM only) so that the CPU rasterizer, the filters, the tests and the GLSL of the
+ * OpenGL backend share one formulation.
+ *
+ * Conventions
+ * - A surfel is a point p with two tangent axes a0, a1 (orthogonal to its normal). The lengths of
+ *   the axes are the surfel's semi-axes; a circular surfel of radius R has |a0| = |a1| = R.
+ * - The local parameterization is u = (u0, u1) in axis units: the surface point is p + u0 a0 + u1 a1.
+ * - The basis function is the Gaussian r(u) = G_Vr(u) with Vr = 1/2 I in axis units, i.e. an
+ *   object-space standard deviation sigma = R / sqrt(2) (variance R^2 / 2). With the default cutoff
+ *   c = 1 the truncated support 1/2 u^T Vr^-1 u < c is exactly the disk |u| < 1: the radius is the
+ *   visible extent of the splat before the screen low-pass filter. Surfels on a regular grid of
+ *   spacing h with R = h have unit spacing in axis units, and unit-spaced Gaussians of variance 1/2
+ *   sum to 1 within 1e-4 (the partition of unity of paper 000, section 7).
+ * - Screen coordinates are pixels of the viewport, origin at its lower-left corner; pixel (i, j)
+ *   has its center at (i + 0.5, j + 0.5).
+ * - The resampling kernel is rho(x) = |J| G_M(x - m), M = J Vr J^T + I (eq. 6), where J is the
+ *   Jacobian of the projective map from axis units to pixels at u = 0 and m the projected center.
+ *   It is evaluated while the exponent beta(x) = 1/2 (x - m)^T M^-1 (x - m) is below the cutoff c.
+ */
+#ifndef SplatSurfelKernel_h
+#define SplatSurfelKernel_h
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+
+namespace splat
+{
+
+/// Variance of the object-space basis function in axis units (see the file comment).
+constexpr double SurfelBasisVariance = 0.5;
+
+/// Gaussian normalization 1/(2 pi).
+constexpr double InverseTwoPi = 0.15915494309189533577;
+
+/**
+ * The projective map of a surfel's tangent plane to pixels, linearized at its center.
+ */
+struct SurfelProjection
+{
+  glm::dvec2 Center{ 0.0 };   ///< m(u_k): the projected center in pixels
+  glm::dmat2 Jacobian{ 1.0 }; ///< J: columns are d(pixel)/d(u0) and d(pixel)/d(u1)
+};
+
+/**
+ * Projects the surfel (p, a0, a1) through the model-to-clip matrix and the viewport mapping.
+ * Returns false when the center is not strictly in front of the eye (clip w <= 0), where the
+ * linearization does not exist.
+ */
+inline bool ProjectSurfel(const glm::dmat4& modelToClip, const glm::dvec2& viewportSize,
+  const glm::dvec3& p, const glm::dvec3& a0, const glm::dvec3& a1, SurfelProjection& out)
+{
+  const glm::dvec4 c = modelToClip * glm::dvec4(p, 1.0);
+  if (!(c.w > 0.0))
+  {
+    return false;
+  }
+  const double invW = 1.0 / c.w;
+  const glm::dvec2 ndc(c.x * invW, c.y * invW);
+  const glm::dvec2 halfSize = 0.5 * viewportSize;
+  out.Center = (ndc + 1.0) * halfSize;
+
+  // d(c.xy / c.w) along a direction d: (d.xy - ndc * d.w) / c.w, then the viewport scale.
+  const glm::dvec4 d0 = modelToClip * glm::dvec4(a0, 0.0);
+  const glm::dvec4 d1 = modelToClip * glm::dvec4(a1, 0.0);
+  out.Jacobian[0] = (glm::dvec2(d0) - ndc * d0.w) * invW * halfSize;
+  out.Jacobian[1] = (glm::dvec2(d1) - ndc * d1.w) * invW * halfSize;
+  return true;
+}
+
+/**
+ * The screen-space resampling kernel rho(x) = Amplitude * exp(-beta(x)),
+ * beta(x) = 1/2 (x - m)^T Conic (x - m), kept where beta(x) < Cutoff.
+ */
+struct ResamplingKernel
+{
+  glm::dvec2 Center{ 0.0 };
+  glm::dmat2 Covariance{ 1.0 }; ///< M = J Vr J^T + I
+  glm::dmat2 Conic{ 1.0 };      ///< M^-1
+  double Amplitude = 0.0;       ///< |J| / (2 pi sqrt|M|)
+  double Cutoff = 1.0;
+  glm::dvec2 HalfExtent{ 0.0 }; ///< half sizes of the tight bounding box of the cutoff ellipse
+
+  /// The exponent beta at pixel position x.
+  double Exponent(const glm::dvec2& x) const
+  {
+    const glm::dvec2 d = x - this->Center;
+    return 0.5 * glm::dot(d, this->Conic * d);
+  }
+
+  /// rho(x), zero outside the cutoff.
+  double Weight(const glm::dvec2& x) const
+  {
+    const double beta = this->Exponent(x);
+    return beta < this->Cutoff ? this->Amplitude * std::exp(-beta) : 0.0;
+  }
+};
+
+/**
+ * Builds the kernel of eq. (6) from a projection. The low-pass term +I keeps M invertible
+ * (|M| >= 1) even for an edge-on surfel whose J is singular; its amplitude |J| then goes to zero.
+ * The bounding box of the ellipse 1/2 x^T M^-1 x = c has half sizes sqrt(2 c M_xx), sqrt(2 c M_yy),
+ * with no eigen-decomposition.
+ */
+inline ResamplingKernel MakeResamplingKernel(const SurfelProjection& projection, double cutoff)
+{
+  ResamplingKernel k;
+  const glm::dmat2& J = projection.Jacobian;
+  k.Center = projection.Center;
+  k.Cutoff = cutoff;
+  k.Covariance = SurfelBasisVariance * (J * glm::transpose(J)) + glm::dmat2(1.0);
+  const double detM = glm::determinant(k.Covariance);
+  k.Conic = glm::dmat2(k.Covariance[1][1], -k.Covariance[0][1], -k.Covariance[1][0],
+              k.Covariance[0][0]) / detM;
+  k.Amplitude = std::abs(glm::determinant(J)) * InverseTwoPi / std::sqrt(detM);
+  k.HalfExtent = glm::dvec2(std::sqrt(2.0 * cutoff * k.Covariance[0][0]),
+    std::sqrt(2.0 * cutoff * k.Covariance[1][1]));
+  return k;
+}
+
+/**
+ * Depth of the surfel's tangent plane along each pixel's view ray, as the rational function
+ * depth(x, y) = (N . (x, y, 1)) / (D . (x, y, 1)) of pixel coordinates, where depth is the eye-space
+ * distance in front of the camera (-z_eye): linear in eye space, not the 1/z of the depth buffer
+ * (An and Zhou). The plane is exact along every ray, not the affine approximation used for the
+ * weights, so intersecting surfaces meet along their true intersection line.
+ */
+struct PlaneDepth
+{
+  glm::dvec3 Numerator{ 0.0 };
+  glm::dvec3 Denominator{ 0.0, 0.0, 1.0 };
+
+  double operator()(double x, double y) const
+  {
+    return glm::dot(this->Numerator, glm::dvec3(x, y, 1.0)) /
+      glm::dot(this->Denominator, glm::dvec3(x, y, 1.0));
+  }
+};
+
+/**
+ * Tangent plane (point p, normal n, in model coordinates) to its per-pixel depth. clipToEye is the
+ * inverse projection matrix. Returns false when the plane contains the view direction at the
+ * surfel (edge-on in clip space), where its depth is not a function of the pixel.
+ */
+inline bool MakePlaneDepth(const glm::dmat4& modelToClip, const glm::dmat4& clipToEye,
+  const glm::dvec2& viewportSize, const glm::dvec3& p, const glm::dvec3& n, PlaneDepth& out)
+{
+  // A plane transforms with the inverse transpose: pi_clip = (modelToClip^-1)^T pi_model.
+  const glm::dvec4 planeModel(n, -glm::dot(n, p));
+  const glm::dvec4 plane = glm::transpose(glm::inverse(modelToClip)) * planeModel;
+  const double scale = glm::length(glm::dvec3(plane));
+  if (!(std::abs(plane.z) > 1e-12 * scale))
+  {
+    return false;
+  }
+  // On the plane, z_ndc = -(pi.x x_ndc + pi.y y_ndc + pi.w) / pi.z; with x_ndc = 2 x / W - 1 the
+  // homogeneous NDC point v = (x_ndc, y_ndc, z_ndc, 1) is affine in the pixel (x, y): v = V (x, y, 1).
+  const double sx = 2.0 / viewportSize.x;
+  const double sy = 2.0 / viewportSize.y;
+  const glm::dvec3 zRow(-plane.x * sx / plane.z, -plane.y * sy / plane.z,
+    (plane.x + plane.y - plane.w) / plane.z);
+  // Rows of V: x_ndc, y_ndc, z_ndc, 1 as functions of (x, y, 1).
+  const glm::dvec3 rows[4] = { { sx, 0.0, -1.0 }, { 0.0, sy, -1.0 }, zRow, { 0.0, 0.0, 1.0 } };
+  // Eye z = (E_2 . v) / (E_3 . v) with E the inverse projection; depth = -z_eye.
+  glm::dvec3 num(0.0), den(0.0);
+  for (int i = 0; i < 4; ++i)
+  {
+    num -= clipToEye[i][2] * rows[i];
+    den += clipToEye[i][3] * rows[i];
+  }
+  out.Numerator = num;
+  out.Denominator = den;
+  return true;
+}
+
+/**
+ * Two unit tangent vectors completing the unit normal n to a right-handed orthonormal frame.
+ * Branch-free construction (Duff et al. 2017), stable for every n.
+ */
+inline void TangentFrame(const glm::dvec3& n, glm::dvec3& t0, glm::dvec3& t1)
+{
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double b = n.x * n.y * a;
+  t0 = glm::dvec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  t1 = glm::dvec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+} // namespace splat
+
+#endif

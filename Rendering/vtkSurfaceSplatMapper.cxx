@@ -1,0 +1,389 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSurfaceSplatMapper.h"
+
+#include "SplatSurfelKernel.h"
+#include "vtkOpenGLImageDepthCompositor.h"
+#include "vtkSurfaceSplatRasterizer.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkScalarsToColors.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkSurfaceSplatMapper);
+
+// The surfels of the current input, rebuilt only when it or its coloring changes.
+struct vtkSurfaceSplatMapper::SurfelArrays
+{
+  std::vector<double> Positions;
+  std::vector<float> Normals;
+  std::vector<float> Axes0;
+  std::vector<float> Axes1;
+  std::vector<float> Colors;
+  bool ColorsFromScalars = false;
+  vtkMTimeType BuildTime = 0;
+
+  vtkSurfaceSplatRasterizer::Surfels View() const
+  {
+    vtkSurfaceSplatRasterizer::Surfels s;
+    s.Positions = this->Positions.data();
+    s.Normals = this->Normals.data();
+    s.Axes0 = this->Axes0.data();
+    s.Axes1 = this->Axes1.data();
+    s.Colors = this->Colors.data();
+    s.Count = this->Normals.size() / 3;
+    return s;
+  }
+};
+
+namespace
+{
+glm::dmat4 ToGlm(vtkMatrix4x4* m)
+{
+  glm::dmat4 result;
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int column = 0; column < 4; ++column)
+    {
+      result[column][row] = m->GetElement(row, column);
+    }
+  }
+  return result;
+}
+
+// The renderer's lights in eye coordinates, as VTK's OpenGL2 polydata shader sees them.
+std::vector<splat::Light> EyeLights(vtkRenderer* ren, const glm::dmat4& worldToEye)
+{
+  std::vector<splat::Light> lights;
+  vtkLightCollection* collection = ren->GetLights();
+  vtkCollectionSimpleIterator it;
+  collection->InitTraversal(it);
+  const glm::dmat3 rotation(worldToEye);
+  while (vtkLight* light = collection->GetNextLight(it))
+  {
+    if (!light->GetSwitch() || light->GetIntensity() <= 0.0)
+    {
+      continue;
+    }
+    splat::Light l;
+    const double* color = light->GetDiffuseColor();
+    l.Color = glm::vec3(glm::dvec3(color[0], color[1], color[2]) * light->GetIntensity());
+    double position[3], focalPoint[3];
+    light->GetTransformedPosition(position);
+    light->GetTransformedFocalPoint(focalPoint);
+    const glm::dvec3 p(position[0], position[1], position[2]);
+    const glm::dvec3 f(focalPoint[0], focalPoint[1], focalPoint[2]);
+    const glm::dvec3 direction = f - p;
+    if (!(glm::length(direction) > 0.0))
+    {
+      continue;
+    }
+    l.Direction = glm::vec3(glm::normalize(rotation * direction));
+    if (light->GetPositional())
+    {
+      l.Positional = true;
+      l.Position = glm::vec3(glm::dvec3(worldToEye * glm::dvec4(p, 1.0)));
+      const double* a = light->GetAttenuationValues();
+      l.Attenuation = glm::vec3(a[0], a[1], a[2]);
+      if (light->GetConeAngle() < 90.0)
+      {
+        l.ConeCosine =
+          static_cast<float>(std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle())));
+        l.Exponent = static_cast<float>(light->GetExponent());
+      }
+    }
+    lights.push_back(l);
+  }
+  return lights;
+}
+
+splat::Material MaterialOf(vtkProperty* property, bool colorsFromScalars)
+{
+  splat::Material m;
+  const double* ambientColor = property->GetAmbientColor();
+  const double* specularColor = property->GetSpecularColor();
+  m.Ambient = static_cast<float>(property->GetAmbient());
+  m.AmbientColor = glm::vec3(ambientColor[0], ambientColor[1], ambientColor[2]);
+  m.AmbientFromColor = colorsFromScalars;
+  m.Diffuse = static_cast<float>(property->GetDiffuse());
+  m.Specular = static_cast<float>(property->GetSpecular()) *
+    glm::vec3(specularColor[0], specularColor[1], specularColor[2]);
+  m.SpecularPower = static_cast<float>(property->GetSpecularPower());
+  return m;
+}
+
+bool IsFinite(const double* v, int n)
+{
+  for (int i = 0; i < n; ++i)
+  {
+    if (!std::isfinite(v[i]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
+vtkSurfaceSplatMapper::vtkSurfaceSplatMapper()
+  : Surfels(new SurfelArrays)
+{
+  this->SetRadiusArrayName("Radius");
+}
+
+//------------------------------------------------------------------------------
+vtkSurfaceSplatMapper::~vtkSurfaceSplatMapper()
+{
+  this->SetRadiusArrayName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::SetCutoff(double cutoff)
+{
+  if (cutoff != this->Rasterizer->GetCutoff())
+  {
+    this->Rasterizer->SetCutoff(cutoff);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+double vtkSurfaceSplatMapper::GetCutoff()
+{
+  return this->Rasterizer->GetCutoff();
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::SetDepthThreshold(double threshold)
+{
+  if (threshold != this->Rasterizer->GetDepthThreshold())
+  {
+    this->Rasterizer->SetDepthThreshold(threshold);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+double vtkSurfaceSplatMapper::GetDepthThreshold()
+{
+  return this->Rasterizer->GetDepthThreshold();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkSurfaceSplatMapper::GetNumberOfRenderedSplats()
+{
+  return this->Rasterizer->GetSplattedCount();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkSurfaceSplatMapper::GetNumberOfCulledSplats()
+{
+  return this->Rasterizer->GetCulledCount();
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
+{
+  vtkPolyData* input = this->GetInput();
+  vtkProperty* property = actor->GetProperty();
+  vtkMTimeType buildNeeded = std::max(
+    { input->GetMTime(), this->GetMTime(), property->GetMTime(), this->LookupTable
+        ? this->LookupTable->GetMTime()
+        : vtkMTimeType(0) });
+  SurfelArrays& s = *this->Surfels;
+  if (s.BuildTime >= buildNeeded && s.BuildTime > 0)
+  {
+    return true;
+  }
+
+  vtkDataArray* normals = input->GetPointData()->GetNormals();
+  if (!normals || normals->GetNumberOfComponents() != 3)
+  {
+    vtkErrorMacro("vtkSurfaceSplatMapper needs point normals (3 components) on its input; "
+                  "vtkSurfelGenerator or vtkPolyDataNormals compute them.");
+    return false;
+  }
+  vtkDataArray* radii =
+    this->RadiusArrayName ? input->GetPointData()->GetArray(this->RadiusArrayName) : nullptr;
+  if (radii && radii->GetNumberOfComponents() != 1)
+  {
+    vtkWarningMacro("Radius array '" << this->RadiusArrayName
+                                     << "' has several components; using the global Radius.");
+    radii = nullptr;
+  }
+  int cellFlag = 0;
+  vtkUnsignedCharArray* scalarColors = this->MapScalars(input, 1.0, cellFlag);
+  if (scalarColors && cellFlag != 0)
+  {
+    vtkWarningMacro("Splats are points: cell scalars are ignored; color by point data instead.");
+    scalarColors = nullptr;
+  }
+  s.ColorsFromScalars = scalarColors != nullptr;
+  const double* diffuseColor = property->GetDiffuseColor();
+
+  const vtkIdType n = input->GetNumberOfPoints();
+  s.Positions.clear();
+  s.Normals.clear();
+  s.Axes0.clear();
+  s.Axes1.clear();
+  s.Colors.clear();
+  for (auto* v : { &s.Normals, &s.Axes0, &s.Axes1, &s.Colors })
+  {
+    v->reserve(3 * n);
+  }
+  s.Positions.reserve(3 * n);
+  vtkIdType skipped = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3], normal[3];
+    input->GetPoint(i, p);
+    normals->GetTuple(i, normal);
+    const double radius = radii ? radii->GetComponent(i, 0) : this->Radius;
+    const double length = vtkMath::Norm(normal);
+    if (!IsFinite(p, 3) || !IsFinite(normal, 3) || !(length > 0.0) || !std::isfinite(length) ||
+      !(radius > 0.0) || !std::isfinite(radius))
+    {
+      ++skipped;
+      continue;
+    }
+    const glm::dvec3 unitNormal = glm::dvec3(normal[0], normal[1], normal[2]) / length;
+    glm::dvec3 t0, t1;
+    splat::TangentFrame(unitNormal, t0, t1);
+    t0 *= radius;
+    t1 *= radius;
+    unsigned char rgba[4] = { 0, 0, 0, 255 };
+    if (scalarColors)
+    {
+      scalarColors->GetTypedTuple(i, rgba);
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      s.Positions.push_back(p[c]);
+      s.Normals.push_back(static_cast<float>(unitNormal[c]));
+      s.Axes0.push_back(static_cast<float>(t0[c]));
+      s.Axes1.push_back(static_cast<float>(t1[c]));
+      s.Colors.push_back(
+        scalarColors ? rgba[c] / 255.0f : static_cast<float>(diffuseColor[c]));
+    }
+  }
+  this->NumberOfSkippedPoints = skipped;
+  if (skipped > 0)
+  {
+    vtkWarningMacro(<< skipped << " of " << n
+                    << " points skipped: non-finite position, normal or radius, zero normal or "
+                       "non-positive radius.");
+  }
+  s.BuildTime = buildNeeded;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
+{
+  const auto start = std::chrono::steady_clock::now();
+  vtkPolyData* input = this->GetInput();
+  if (!input)
+  {
+    vtkErrorMacro("No input.");
+    return;
+  }
+  this->InvokeEvent(vtkCommand::StartEvent, nullptr);
+  if (!this->Static)
+  {
+    this->GetInputAlgorithm()->Update();
+  }
+  this->InvokeEvent(vtkCommand::EndEvent, nullptr);
+  input = this->GetInput();
+  // Hardware picking of splats arrives with the OpenGL backend; they are not drawn into
+  // selection passes.
+  if (!input || input->GetNumberOfPoints() == 0 || ren->GetSelector() ||
+    !this->UpdateSurfels(actor))
+  {
+    return;
+  }
+
+  int width, height, originX, originY;
+  ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkSurfaceSplatRasterizer::Camera view;
+  const glm::dmat4 worldToEye = ToGlm(camera->GetModelViewTransformMatrix());
+  view.ModelToEye = worldToEye * ToGlm(actor->GetMatrix());
+  view.EyeToClip =
+    ToGlm(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1.0, 1.0));
+  view.Viewport = glm::ivec2(width, height);
+
+  vtkProperty* property = actor->GetProperty();
+  const std::vector<splat::Light> lights =
+    property->GetLighting() ? EyeLights(ren, worldToEye) : std::vector<splat::Light>();
+  this->NumberOfSplats = static_cast<vtkIdType>(this->Surfels->Normals.size() / 3);
+  this->Rasterizer->Render(
+    this->Surfels->View(), view, lights, MaterialOf(property, this->Surfels->ColorsFromScalars));
+  this->Compositor->Draw(ren, width, height, this->Rasterizer->GetColors().data(),
+    this->Rasterizer->GetDepths().data());
+
+  this->LastRenderTimeInMilliseconds =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::ComputeBounds()
+{
+  this->Superclass::ComputeBounds();
+  if (!vtkMath::AreBoundsInitialized(this->Bounds))
+  {
+    return;
+  }
+  double radius = this->Radius;
+  vtkPolyData* input = this->GetInput();
+  vtkDataArray* radii = input && this->RadiusArrayName
+    ? input->GetPointData()->GetArray(this->RadiusArrayName)
+    : nullptr;
+  if (radii && radii->GetNumberOfComponents() == 1 && radii->GetNumberOfTuples() > 0)
+  {
+    const double range = radii->GetRange(0)[1];
+    radius = std::isfinite(range) ? range : 0.0;
+  }
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    this->Bounds[2 * axis] -= radius;
+    this->Bounds[2 * axis + 1] += radius;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Compositor->ReleaseGraphicsResources(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Radius: " << this->Radius << "\n";
+  os << indent << "RadiusArrayName: " << (this->RadiusArrayName ? this->RadiusArrayName : "(none)")
+     << "\n";
+  os << indent << "Cutoff: " << this->Rasterizer->GetCutoff() << "\n";
+  os << indent << "DepthThreshold: " << this->Rasterizer->GetDepthThreshold() << "\n";
+  os << indent << "NumberOfSplats: " << this->NumberOfSplats << "\n";
+  os << indent << "NumberOfSkippedPoints: " << this->NumberOfSkippedPoints << "\n";
+  os << indent << "LastRenderTimeInMilliseconds: " << this->LastRenderTimeInMilliseconds << "\n";
+}
