@@ -15,6 +15,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
@@ -345,25 +346,33 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
 //------------------------------------------------------------------------------
 void vtkSurfaceSplatMapper::ComputeBounds()
 {
-  this->Superclass::ComputeBounds();
-  if (!vtkMath::AreBoundsInitialized(this->Bounds))
+  // Finite ranges only: a NaN or Inf point is skipped at render time and must not spoil the
+  // camera reset and the clipping range either.
+  vtkMath::UninitializeBounds(this->Bounds);
+  vtkPolyData* input = this->GetInput();
+  if (!input || !input->GetPoints() || input->GetNumberOfPoints() == 0)
   {
     return;
   }
+  vtkDataArray* points = input->GetPoints()->GetData();
   double radius = this->Radius;
-  vtkPolyData* input = this->GetInput();
-  vtkDataArray* radii = input && this->RadiusArrayName
-    ? input->GetPointData()->GetArray(this->RadiusArrayName)
-    : nullptr;
-  if (radii && radii->GetNumberOfComponents() == 1 && radii->GetNumberOfTuples() > 0)
+  vtkDataArray* radii =
+    this->RadiusArrayName ? input->GetPointData()->GetArray(this->RadiusArrayName) : nullptr;
+  if (radii && radii->GetNumberOfComponents() == 1)
   {
-    const double range = radii->GetRange(0)[1];
-    radius = std::isfinite(range) ? range : 0.0;
+    radius = std::max(radii->GetFiniteRange(0)[1], 0.0);
   }
   for (int axis = 0; axis < 3; ++axis)
   {
-    this->Bounds[2 * axis] -= radius;
-    this->Bounds[2 * axis + 1] += radius;
+    double range[2];
+    points->GetFiniteRange(range, axis);
+    if (!(range[0] <= range[1]))
+    {
+      vtkMath::UninitializeBounds(this->Bounds);
+      return;
+    }
+    this->Bounds[2 * axis] = range[0] - radius;
+    this->Bounds[2 * axis + 1] = range[1] + radius;
   }
 }
 

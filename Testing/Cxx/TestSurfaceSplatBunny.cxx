@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Regression image: the Stanford bunny scan's vertices as surfels (vtkSurfelGenerator), drawn
+// by vtkSurfaceSplatMapper. Skips when ../shared/data/bunny.ply is absent.
+#include "SplatTestUtilities.h"
+#include "vtkSurfaceSplatMapper.h"
+#include "vtkSurfelGenerator.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkPLYReader.h"
+#include "vtkProperty.h"
+#include "vtkRegressionTestImage.h"
+#include "vtkRenderer.h"
+
+int main(int argc, char* argv[])
+{
+  const std::string file = splattest::Argument(argc, argv, "-D") + "/bunny.ply";
+  if (!splattest::FileExists(file))
+  {
+    std::cout << "Skipping: " << file << " is absent.\n";
+    return splattest::SkipReturnCode;
+  }
+  vtkNew<vtkPLYReader> reader;
+  reader->SetFileName(file.c_str());
+  vtkNew<vtkSurfelGenerator> surfels;
+  surfels->SetInputConnection(reader->GetOutputPort());
+
+  vtkNew<vtkSurfaceSplatMapper> mapper;
+  mapper->SetInputConnection(surfels->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.85, 0.75, 0.6);
+  actor->GetProperty()->SetSpecular(0.2);
+  actor->GetProperty()->SetSpecularPower(20.0);
+
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  renderer->SetBackground(0.1, 0.1, 0.15);
+  auto window = splattest::MakeRenderWindow(400, 400);
+  window->AddRenderer(renderer);
+  renderer->ResetCamera();
+  renderer->GetActiveCamera()->Zoom(1.3);
+  window->Render();
+
+  if (mapper->GetNumberOfRenderedSplats() < 30000)
+  {
+    std::cerr << "Expected the bunny's splats drawn, got " << mapper->GetNumberOfRenderedSplats()
+              << ".\n";
+    return EXIT_FAILURE;
+  }
+  return vtkRegressionTestImage(window) == vtkTesting::FAILED ? EXIT_FAILURE : EXIT_SUCCESS;
+}
