@@ -143,16 +143,17 @@ struct PlaneDepth
 };
 
 /**
- * Tangent plane (point p, normal n, in model coordinates) to its per-pixel depth. clipToEye is the
- * inverse projection matrix. Returns false when the plane contains the view direction at the
- * surfel (edge-on in clip space), where its depth is not a function of the pixel.
+ * Tangent plane (point p, normal n, in model coordinates) to its per-pixel depth. clipToModel and
+ * clipToEye are the inverses of the model-to-clip and projection matrices. Returns false when the
+ * plane contains the view direction at the surfel (edge-on in clip space), where its depth is not
+ * a function of the pixel.
  */
-inline bool MakePlaneDepth(const glm::dmat4& modelToClip, const glm::dmat4& clipToEye,
+inline bool MakePlaneDepth(const glm::dmat4& clipToModel, const glm::dmat4& clipToEye,
   const glm::dvec2& viewportSize, const glm::dvec3& p, const glm::dvec3& n, PlaneDepth& out)
 {
   // A plane transforms with the inverse transpose: pi_clip = (modelToClip^-1)^T pi_model.
   const glm::dvec4 planeModel(n, -glm::dot(n, p));
-  const glm::dvec4 plane = glm::transpose(glm::inverse(modelToClip)) * planeModel;
+  const glm::dvec4 plane = planeModel * clipToModel;
   const double scale = glm::length(glm::dvec3(plane));
   if (!(std::abs(plane.z) > 1e-12 * scale))
   {

@@ -77,6 +77,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   }
 
   const glm::dmat4 modelToClip = camera.EyeToClip * camera.ModelToEye;
+  const glm::dmat4 clipToModel = glm::inverse(modelToClip);
   const glm::dmat4 clipToEye = glm::inverse(camera.EyeToClip);
   const glm::dmat3 normalToEye = glm::transpose(glm::inverse(glm::dmat3(camera.ModelToEye)));
   const glm::dvec2 viewport(width, height);
@@ -132,7 +133,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
 
         const glm::dvec3 eye(camera.ModelToEye * glm::dvec4(p, 1.0));
         splat::PlaneDepth depth;
-        if (!splat::MakePlaneDepth(modelToClip, clipToEye, viewport, p, n, depth))
+        if (!splat::MakePlaneDepth(clipToModel, clipToEye, viewport, p, n, depth))
         {
           depth.Numerator = glm::dvec3(0.0, 0.0, -eye.z);
           depth.Denominator = glm::dvec3(0.0, 0.0, 1.0);

@@ -263,7 +263,8 @@ TEST(SurfelKernel, PlaneDepthIsTheRayIntersection)
   const glm::dvec3 p(0.1, -0.2, 0.3);
   const glm::dvec3 n = glm::normalize(glm::dvec3(0.6, 0.2, 0.7));
   splat::PlaneDepth depth;
-  ASSERT_TRUE(splat::MakePlaneDepth(modelToClip, glm::inverse(projection), Viewport, p, n, depth));
+  ASSERT_TRUE(splat::MakePlaneDepth(
+    glm::inverse(modelToClip), glm::inverse(projection), Viewport, p, n, depth));
   const glm::dmat4 eyeToModel = glm::inverse(view);
   const glm::dvec3 eyeModel(eyeToModel * glm::dvec4(0.0, 0.0, 0.0, 1.0));
   for (double x = 100.5; x < 600.0; x += 50.0)
