@@ -1,0 +1,152 @@
+"""Plugin test, run by pvpython: loads the Splat ParaView plugin and uses its proxies.
+
+    pvpython TestPluginLoad.py --plugin PATH/SplatPlugin.so
+
+Checks that
+- the plugin loads in the client (builtin) session;
+- mappers/SurfaceSplatMapper creates a vtkSurfaceSplatMapper whose Cutoff, Radius,
+  DepthThreshold and RadiusArrayName set through the proxy read back from the VTK object;
+- filters/SurfelGenerator is in paraview.simple after LoadPlugin, runs on a Sphere source and
+  produces points with normals and a radius array.
+Any failure exits non-zero (a missing plugin, class or proxy included).
+"""
+
+import argparse
+import math
+import os
+import sys
+import traceback
+
+failures = []
+
+
+def check(condition, message):
+    status = "ok  " if condition else "FAIL"
+    print("%s %s" % (status, message), flush=True)
+    if not condition:
+        failures.append(message)
+    return condition
+
+
+def close(a, b, tol=1e-12):
+    return a is not None and b is not None and math.isclose(a, b, rel_tol=tol, abs_tol=tol)
+
+
+def info_value(proxy, info_name):
+    """Value of an information-only property, read from the server-side VTK object."""
+    proxy.UpdatePropertyInformation()
+    prop = proxy.GetProperty(info_name)
+    if prop is None or prop.GetNumberOfElements() == 0:
+        return None
+    return prop.GetElement(0)
+
+
+def test_mapper(servermanager):
+    smproxy = servermanager.CreateProxy("mappers", "SurfaceSplatMapper")
+    if not check(smproxy is not None, "mappers/SurfaceSplatMapper proxy is created"):
+        return
+    check(smproxy.GetXMLName() == "SurfaceSplatMapper", "proxy XML name")
+
+    # In the builtin session the VTK object lives in this process: ask it its class.
+    vtk_object = smproxy.GetClientSideObject()
+    check(vtk_object is not None, "the proxy has a VTK object")
+    if vtk_object is not None:
+        check(vtk_object.GetClassName() == "vtkSurfaceSplatMapper",
+              "VTK object class is vtkSurfaceSplatMapper (got %s)" % vtk_object.GetClassName())
+        check(vtk_object.IsA("vtkPolyDataMapper"), "vtkSurfaceSplatMapper is a vtkPolyDataMapper")
+
+    mapper = servermanager._getPyProxy(smproxy)
+
+    # Defaults pushed by the XML read back from the object.
+    check(close(info_value(smproxy, "CutoffInfo"), 1.0), "default Cutoff is 1")
+
+    # Round trips: proxy property -> VTK object -> information property.
+    values = {"Cutoff": 2.5, "Radius": 0.125, "DepthThreshold": 0.75}
+    for name, value in values.items():
+        setattr(mapper, name, value)
+    mapper.RadiusArrayName = "SplatRadius"
+    smproxy.UpdateVTKObjects()
+    for name, value in values.items():
+        got = info_value(smproxy, name + "Info")
+        check(close(got, value), "%s round-trips (set %g, got %s)" % (name, value, got))
+    got = info_value(smproxy, "RadiusArrayNameInfo")
+    check(got == "SplatRadius", "RadiusArrayName round-trips (got %r)" % (got,))
+
+    # Render statistics are exposed before any render.
+    skipped = info_value(smproxy, "NumberOfSkippedPoints")
+    check(skipped == 0, "NumberOfSkippedPoints is 0 before a render (got %s)" % (skipped,))
+
+
+def test_surfel_generator(simple, servermanager):
+    check("SurfelGenerator" in dir(simple) or "SurfelGenerator" in globals(),
+          "SurfelGenerator is a paraview.simple function after LoadPlugin")
+    make = globals().get("SurfelGenerator") or getattr(simple, "SurfelGenerator", None)
+    if make is None:
+        return
+
+    sphere = simple.Sphere(ThetaResolution=32, PhiResolution=16, Radius=1.0)
+    surfels = make(Input=sphere)
+    check(surfels.GetXMLName() == "SurfelGenerator", "filter proxy XML name")
+    check(surfels.SMProxy.GetXMLGroup() == "filters", "filter proxy is in the filters group")
+    check(surfels.NumberOfNeighbors == 6, "default NumberOfNeighbors is 6")
+    surfels.NumberOfNeighbors = 8
+    surfels.UpdatePipeline()
+
+    expected = sphere.GetDataInformation().GetNumberOfPoints()
+    info = surfels.GetDataInformation()
+    npts = info.GetNumberOfPoints()
+    check(npts > 0, "SurfelGenerator produces points (%d)" % npts)
+    check(npts == expected, "one surfel per input point (%d vs %d)" % (npts, expected))
+    check(info.GetDataSetTypeAsString() == "vtkPolyData",
+          "output is vtkPolyData (got %s)" % info.GetDataSetTypeAsString())
+
+    point_arrays = surfels.PointData
+    names = point_arrays.keys()
+    check("Radius" in names, "output has the Radius array (arrays: %s)" % ", ".join(names))
+    if "Radius" in names:
+        lo, hi = point_arrays["Radius"].GetRange()
+        check(lo > 0.0 and math.isfinite(hi), "radii are positive and finite [%g, %g]" % (lo, hi))
+    check("Normals" in names and point_arrays["Normals"].GetNumberOfComponents() == 3,
+          "output has 3-component point Normals")
+
+    # The data as the client gets it.
+    data = servermanager.Fetch(surfels)
+    check(data is not None and data.GetNumberOfPoints() == npts, "fetched output has the points")
+    if data is not None:
+        check(data.GetPointData().GetNormals() is not None, "fetched output has normals set")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--plugin", required=True, help="path of SplatPlugin.so")
+    args = parser.parse_args()
+
+    if not check(os.path.isfile(args.plugin), "plugin file exists: %s" % args.plugin):
+        return 1
+
+    from paraview import simple, servermanager
+
+    try:
+        simple.LoadPlugin(args.plugin, remote=False, ns=globals())
+        check(True, "LoadPlugin")
+    except Exception as error:  # a plugin that does not load fails the test
+        check(False, "LoadPlugin: %s" % error)
+        return 1
+
+    for test in (lambda: test_mapper(servermanager),
+                 lambda: test_surfel_generator(simple, servermanager)):
+        try:
+            test()
+        except Exception:
+            traceback.print_exc()
+            check(False, "exception (see above)")
+
+    if failures:
+        print("%d check(s) failed" % len(failures))
+        return 1
+    print("all checks passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
