@@ -102,21 +102,57 @@ struct ResamplingKernel
 };
 
 /**
- * Builds the kernel of eq. (6) from a projection. The low-pass term +I keeps M invertible
- * (|M| >= 1) even for an edge-on surfel whose J is singular; its amplitude |J| then goes to zero.
- * The bounding box of the ellipse 1/2 x^T M^-1 x = c has half sizes sqrt(2 c M_xx), sqrt(2 c M_yy),
- * with no eigen-decomposition.
+ * The screen-space filter of a kernel, as compared in paper 000, figure 8.
  */
-inline ResamplingKernel MakeResamplingKernel(const SurfelProjection& projection, double cutoff)
+enum class KernelFilter
+{
+  EWA,       ///< M = J Vr J^T + I: the warped basis function band-limited by the screen low-pass
+  Circular,  ///< a circle whose radius is the major axis of the EWA ellipse (Levoy, Shade)
+  Unfiltered ///< M = J Vr J^T: elliptical splats without band-limiting; aliases when minified
+};
+
+/// Variance added to unfiltered kernels, in pixels^2, so that an edge-on surfel's M stays
+/// invertible; far below a pixel, it does not band-limit.
+constexpr double UnfilteredMinimumVariance = 1e-6;
+
+/// Peak weight below which a kernel is left out: after normalization and coverage it cannot
+/// change an 8-bit pixel (an edge-on surfel, whose |J| vanishes, is the usual case).
+constexpr double NegligibleAmplitude = 1.0 / 1024.0;
+
+/**
+ * Builds the kernel of eq. (6) from a projection. With the EWA filter the low-pass term +I keeps
+ * M invertible (|M| >= 1) even for an edge-on surfel whose J is singular; its amplitude |J| then
+ * goes to zero. The bounding box of the ellipse 1/2 x^T M^-1 x = c has half sizes
+ * sqrt(2 c M_xx), sqrt(2 c M_yy), with no eigen-decomposition.
+ */
+inline ResamplingKernel MakeResamplingKernel(
+  const SurfelProjection& projection, double cutoff, KernelFilter filter = KernelFilter::EWA)
 {
   ResamplingKernel k;
   const glm::dmat2& J = projection.Jacobian;
   k.Center = projection.Center;
   k.Cutoff = cutoff;
-  k.Covariance = SurfelBasisVariance * (J * glm::transpose(J)) + glm::dmat2(1.0);
+  const glm::dmat2 warped = SurfelBasisVariance * (J * glm::transpose(J));
+  switch (filter)
+  {
+    case KernelFilter::EWA:
+      k.Covariance = warped + glm::dmat2(1.0);
+      break;
+    case KernelFilter::Circular:
+    {
+      // The larger eigenvalue of the EWA covariance: the squared major semi-axis.
+      const glm::dmat2 ewa = warped + glm::dmat2(1.0);
+      const double mean = 0.5 * (ewa[0][0] + ewa[1][1]);
+      const double half = 0.5 * (ewa[0][0] - ewa[1][1]);
+      k.Covariance = glm::dmat2(mean + std::sqrt(half * half + ewa[0][1] * ewa[0][1]));
+      break;
+    }
+    case KernelFilter::Unfiltered:
+      k.Covariance = warped + glm::dmat2(UnfilteredMinimumVariance);
+      break;
+  }
   const double detM = glm::determinant(k.Covariance);
-  k.Conic = glm::dmat2(k.Covariance[1][1], -k.Covariance[0][1], -k.Covariance[1][0],
-              k.Covariance[0][0]) / detM;
+  k.Conic = glm::inverse(k.Covariance);
   k.Amplitude = std::abs(glm::determinant(J)) * InverseTwoPi / std::sqrt(detM);
   k.HalfExtent = glm::dvec2(std::sqrt(2.0 * cutoff * k.Covariance[0][0]),
     std::sqrt(2.0 * cutoff * k.Covariance[1][1]));

@@ -147,12 +147,16 @@ vtkSurfaceSplatMapper::vtkSurfaceSplatMapper()
   : Surfels(new SurfelArrays)
 {
   this->SetRadiusArrayName("Radius");
+  this->SetTangentAxis0ArrayName("TangentAxis0");
+  this->SetTangentAxis1ArrayName("TangentAxis1");
 }
 
 //------------------------------------------------------------------------------
 vtkSurfaceSplatMapper::~vtkSurfaceSplatMapper()
 {
   this->SetRadiusArrayName(nullptr);
+  this->SetTangentAxis0ArrayName(nullptr);
+  this->SetTangentAxis1ArrayName(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -196,7 +200,26 @@ vtkIdType vtkSurfaceSplatMapper::GetNumberOfRenderedSplats()
 //------------------------------------------------------------------------------
 vtkIdType vtkSurfaceSplatMapper::GetNumberOfCulledSplats()
 {
-  return this->Rasterizer->GetCulledCount();
+  return this->Rasterizer->GetFrustumCulledCount() + this->Rasterizer->GetBackfaceCulledCount() +
+    this->Rasterizer->GetNegligibleCount();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkSurfaceSplatMapper::GetNumberOfFrustumCulledSplats()
+{
+  return this->Rasterizer->GetFrustumCulledCount();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkSurfaceSplatMapper::GetNumberOfBackfaceCulledSplats()
+{
+  return this->Rasterizer->GetBackfaceCulledCount();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkSurfaceSplatMapper::GetNumberOfNegligibleSplats()
+{
+  return this->Rasterizer->GetNegligibleCount();
 }
 
 //------------------------------------------------------------------------------
@@ -214,11 +237,27 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
     return true;
   }
 
-  vtkDataArray* normals = input->GetPointData()->GetNormals();
-  if (!normals || normals->GetNumberOfComponents() != 3)
+  vtkPointData* pointData = input->GetPointData();
+  auto vectorArray = [pointData](const char* name) -> vtkDataArray*
   {
-    vtkErrorMacro("vtkSurfaceSplatMapper needs point normals (3 components) on its input; "
-                  "vtkSurfelGenerator or vtkPolyDataNormals compute them.");
+    vtkDataArray* array = name ? pointData->GetArray(name) : nullptr;
+    return array && array->GetNumberOfComponents() == 3 ? array : nullptr;
+  };
+  vtkDataArray* axis0 = vectorArray(this->TangentAxis0ArrayName);
+  vtkDataArray* axis1 = vectorArray(this->TangentAxis1ArrayName);
+  if (!axis0 || !axis1)
+  {
+    axis0 = axis1 = nullptr;
+  }
+  vtkDataArray* normals = pointData->GetNormals();
+  if (normals && normals->GetNumberOfComponents() != 3)
+  {
+    normals = nullptr;
+  }
+  if (!normals && !axis0)
+  {
+    vtkErrorMacro("vtkSurfaceSplatMapper needs point normals (3 components) or tangent axes on "
+                  "its input; vtkSurfelGenerator or vtkPolyDataNormals compute normals.");
     return false;
   }
   vtkDataArray* radii =
@@ -253,22 +292,45 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
   vtkIdType skipped = 0;
   for (vtkIdType i = 0; i < n; ++i)
   {
-    double p[3], normal[3];
+    double p[3];
     input->GetPoint(i, p);
-    normals->GetTuple(i, normal);
-    const double radius = radii ? radii->GetComponent(i, 0) : this->Radius;
-    const double length = vtkMath::Norm(normal);
-    if (!IsFinite(p, 3) || !IsFinite(normal, 3) || !(length > 0.0) || !std::isfinite(length) ||
-      !(radius > 0.0) || !std::isfinite(radius))
+    glm::dvec3 normal(0.0), t0, t1;
+    bool valid = IsFinite(p, 3);
+    if (axis0)
+    {
+      axis0->GetTuple(i, &t0.x);
+      axis1->GetTuple(i, &t1.x);
+      const glm::dvec3 cross = glm::cross(t0, t1);
+      valid = valid && IsFinite(&t0.x, 3) && IsFinite(&t1.x, 3) && glm::length(cross) > 0.0;
+      if (normals)
+      {
+        normals->GetTuple(i, &normal.x);
+      }
+      else
+      {
+        normal = cross;
+      }
+    }
+    else
+    {
+      normals->GetTuple(i, &normal.x);
+    }
+    const double length = glm::length(normal);
+    valid = valid && IsFinite(&normal.x, 3) && length > 0.0 && std::isfinite(length);
+    if (valid && !axis0)
+    {
+      const double radius = radii ? radii->GetComponent(i, 0) : this->Radius;
+      valid = radius > 0.0 && std::isfinite(radius);
+      splat::TangentFrame(normal / length, t0, t1);
+      t0 *= radius;
+      t1 *= radius;
+    }
+    if (!valid)
     {
       ++skipped;
       continue;
     }
-    const glm::dvec3 unitNormal = glm::dvec3(normal[0], normal[1], normal[2]) / length;
-    glm::dvec3 t0, t1;
-    splat::TangentFrame(unitNormal, t0, t1);
-    t0 *= radius;
-    t1 *= radius;
+    const glm::dvec3 unitNormal = normal / length;
     unsigned char rgba[4] = { 0, 0, 0, 255 };
     if (scalarColors)
     {
@@ -288,8 +350,8 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
   if (skipped > 0)
   {
     vtkWarningMacro(<< skipped << " of " << n
-                    << " points skipped: non-finite position, normal or radius, zero normal or "
-                       "non-positive radius.");
+                    << " points skipped: non-finite position, normal, radius or axis, zero "
+                       "normal, non-positive radius or parallel axes.");
   }
   s.BuildTime = buildNeeded;
   return true;
@@ -334,6 +396,8 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
   const std::vector<splat::Light> lights =
     property->GetLighting() ? EyeLights(ren, worldToEye) : std::vector<splat::Light>();
   this->NumberOfSplats = static_cast<vtkIdType>(this->Surfels->Normals.size() / 3);
+  this->Rasterizer->SetFilter(static_cast<splat::KernelFilter>(this->FilterMode));
+  this->Rasterizer->SetBackfaceCulling(property->GetBackfaceCulling());
   this->Rasterizer->Render(
     this->Surfels->View(), view, lights, MaterialOf(property, this->Surfels->ColorsFromScalars));
   this->Compositor->Draw(ren, width, height, this->Rasterizer->GetColors().data(),
@@ -361,6 +425,15 @@ void vtkSurfaceSplatMapper::ComputeBounds()
   if (radii && radii->GetNumberOfComponents() == 1)
   {
     radius = std::max(radii->GetFiniteRange(0)[1], 0.0);
+  }
+  for (const char* name : { this->TangentAxis0ArrayName, this->TangentAxis1ArrayName })
+  {
+    vtkDataArray* axis = name ? input->GetPointData()->GetArray(name) : nullptr;
+    if (axis && axis->GetNumberOfComponents() == 3)
+    {
+      const double norm = axis->GetMaxNorm();
+      radius = std::isfinite(norm) ? std::max(radius, norm) : radius;
+    }
   }
   for (int axis = 0; axis < 3; ++axis)
   {
@@ -390,6 +463,11 @@ void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Radius: " << this->Radius << "\n";
   os << indent << "RadiusArrayName: " << (this->RadiusArrayName ? this->RadiusArrayName : "(none)")
      << "\n";
+  os << indent << "TangentAxis0ArrayName: "
+     << (this->TangentAxis0ArrayName ? this->TangentAxis0ArrayName : "(none)") << "\n";
+  os << indent << "TangentAxis1ArrayName: "
+     << (this->TangentAxis1ArrayName ? this->TangentAxis1ArrayName : "(none)") << "\n";
+  os << indent << "FilterMode: " << this->FilterMode << "\n";
   os << indent << "Cutoff: " << this->Rasterizer->GetCutoff() << "\n";
   os << indent << "DepthThreshold: " << this->Rasterizer->GetDepthThreshold() << "\n";
   os << indent << "NumberOfSplats: " << this->NumberOfSplats << "\n";

@@ -13,13 +13,20 @@
  * render window, so they occlude and are occluded by other actors correctly.
  *
  * Input:
- * - point normals (required; vtkSurfelGenerator or vtkPolyDataNormals make them);
+ * - point normals (vtkSurfelGenerator or vtkPolyDataNormals make them);
+ * - optionally, elliptical surfels: two tangent-axis arrays of 3-vectors (TangentAxis0ArrayName,
+ *   TangentAxis1ArrayName, default "TangentAxis0" and "TangentAxis1") whose lengths are the
+ *   ellipse's semi-axes; they replace the radius, and give the normal where none is present;
  * - a per-point radius array (RadiusArrayName, default "Radius"), or the global Radius. The radius
  *   is the extent of the splat's disk at the default cutoff: the Gaussian basis function has
  *   variance Radius^2 / 2 (see SplatSurfelKernel.h). For points sampled with spacing h, a radius
  *   of h gives a partition of unity.
- * Points with a non-finite position, normal or radius, a zero normal or a non-positive radius are
- * skipped and counted (GetNumberOfSkippedPoints), never drawn.
+ * Points with a non-finite position, normal, radius or axis, a zero normal, a non-positive radius
+ * or parallel axes are skipped and counted (GetNumberOfSkippedPoints), never drawn.
+ *
+ * Each render leaves out what the frame does not need, and counts it: splats outside the view
+ * frustum, splats facing away when the actor's property has BackfaceCulling on (for closed,
+ * consistently oriented, opaque surfaces), and splats whose peak weight is negligible (edge-on).
  *
  * Rendering runs on the multithreaded CPU rasterizer (vtkSurfaceSplatRasterizer, threads from
  * vtkSMPTools); the image and its depth are then drawn into the OpenGL framebuffer.
@@ -74,6 +81,39 @@ public:
 
   ///@{
   /**
+   * Names of the point-data arrays of tangent axes for elliptical surfels. Default
+   * "TangentAxis0" and "TangentAxis1".
+   */
+  vtkSetStringMacro(TangentAxis0ArrayName);
+  vtkGetStringMacro(TangentAxis0ArrayName);
+  vtkSetStringMacro(TangentAxis1ArrayName);
+  vtkGetStringMacro(TangentAxis1ArrayName);
+  ///@}
+
+  /**
+   * The screen-space filter of each splat (paper 000, figure 8).
+   */
+  enum FilterModes
+  {
+    EWA = 0,        ///< exact screen-space EWA: warped basis function convolved with the low-pass
+    CIRCULAR = 1,   ///< circles with the major axis of the EWA ellipse: blurs magnified areas
+    UNFILTERED = 2, ///< warped ellipses without the low-pass: aliases minified areas
+  };
+
+  ///@{
+  /**
+   * Screen-space filter: EWA (default), CIRCULAR or UNFILTERED. The last two are the baselines
+   * of the error-against-time report.
+   */
+  vtkSetClampMacro(FilterMode, int, EWA, UNFILTERED);
+  vtkGetMacro(FilterMode, int);
+  void SetFilterModeToEWA() { this->SetFilterMode(EWA); }
+  void SetFilterModeToCircular() { this->SetFilterMode(CIRCULAR); }
+  void SetFilterModeToUnfiltered() { this->SetFilterMode(UNFILTERED); }
+  ///@}
+
+  ///@{
+  /**
    * Z threshold of the accumulate-or-replace decision, in units of each splat's radius in eye
    * space: contributions whose tangent-plane depths differ by less belong to the same surface.
    * Default 1.
@@ -84,13 +124,16 @@ public:
 
   ///@{
   /**
-   * What the last render did: points given to the rasterizer, splats drawn, splats culled
-   * (behind the eye, outside the near/far range or the viewport), input points skipped as
-   * invalid, and the wall-clock time of the render in milliseconds.
+   * What the last render did: points given to the rasterizer; splats drawn; splats left out
+   * (in total, and outside the frustum, back-facing with backface culling, or negligible);
+   * input points skipped as invalid; and the wall-clock time of the render in milliseconds.
    */
   vtkGetMacro(NumberOfSplats, vtkIdType);
   vtkIdType GetNumberOfRenderedSplats();
   vtkIdType GetNumberOfCulledSplats();
+  vtkIdType GetNumberOfFrustumCulledSplats();
+  vtkIdType GetNumberOfBackfaceCulledSplats();
+  vtkIdType GetNumberOfNegligibleSplats();
   vtkGetMacro(NumberOfSkippedPoints, vtkIdType);
   vtkGetMacro(LastRenderTimeInMilliseconds, double);
   ///@}
@@ -120,6 +163,9 @@ protected:
 
   double Radius = 1.0;
   char* RadiusArrayName = nullptr;
+  char* TangentAxis0ArrayName = nullptr;
+  char* TangentAxis1ArrayName = nullptr;
+  int FilterMode = EWA;
 
   vtkIdType NumberOfSplats = 0;
   vtkIdType NumberOfSkippedPoints = 0;

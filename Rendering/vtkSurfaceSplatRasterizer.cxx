@@ -14,6 +14,14 @@ vtkStandardNewMacro(vtkSurfaceSplatRasterizer);
 
 namespace
 {
+enum CullReason
+{
+  Kept = 0,
+  OutsideFrustum,
+  BackFacing,
+  Negligible
+};
+
 // Rows per band: small enough to balance the threads, large enough that few kernels straddle bands.
 constexpr int BandHeight = 16;
 
@@ -24,7 +32,8 @@ struct ScreenSplat
   float ConicXX, ConicXY, ConicYY; // 1/2 M^-1, so that beta = d^T C d
   float Amplitude;
   float Threshold; // eye-space z threshold
-  int X0, X1, Y0, Y1; // inclusive pixel bounds, X0 > X1 when culled
+  int X0, X1, Y0, Y1; // inclusive pixel bounds
+  int Culled;         // why the splat is left out, Kept when it is not
   float DepthNumerator[3];
   float DepthDenominator[3];
   float Normal[3]; // eye space, facing the viewer
@@ -69,10 +78,11 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   this->WeightedColors.assign(3 * pixels, 0.0f);
   this->WeightedNormals.assign(3 * pixels, 0.0f);
   this->EyeDepths.assign(pixels, std::numeric_limits<float>::infinity());
-  this->SplattedCount = this->CulledCount = this->FragmentCount = 0;
+  this->SplattedCount = this->FrustumCulledCount = this->BackfaceCulledCount = 0;
+  this->NegligibleCount = this->FragmentCount = 0;
   if (pixels == 0)
   {
-    this->CulledCount = static_cast<vtkIdType>(surfels.Count);
+    this->FrustumCulledCount = static_cast<vtkIdType>(surfels.Count);
     return;
   }
 
@@ -84,6 +94,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const bool perspective = camera.EyeToClip[3][3] == 0.0;
   const double cutoff = this->Cutoff;
   const double depthThreshold = this->DepthThreshold;
+  const splat::KernelFilter filter = this->Filter;
+  const bool backfaceCulling = this->BackfaceCulling;
 
   // 1. Setup.
   std::vector<ScreenSplat>& splats = this->Internal->Splats;
@@ -94,8 +106,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
       for (vtkIdType i = begin; i < end; ++i)
       {
         ScreenSplat& s = splats[i];
-        s.X0 = 1;
-        s.X1 = 0;
+        s.Culled = OutsideFrustum;
         const glm::dvec3 p(surfels.Positions[3 * i], surfels.Positions[3 * i + 1],
           surfels.Positions[3 * i + 2]);
         const glm::dvec3 n(
@@ -112,7 +123,22 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         {
           continue;
         }
-        const splat::ResamplingKernel kernel = splat::MakeResamplingKernel(projection, cutoff);
+        const glm::dvec3 eye(camera.ModelToEye * glm::dvec4(p, 1.0));
+        glm::dvec3 normal = glm::normalize(normalToEye * n);
+        const glm::dvec3 view = perspective ? eye : glm::dvec3(0.0, 0.0, -1.0);
+        const bool backFacing = glm::dot(normal, view) > 0.0;
+        if (backFacing && backfaceCulling)
+        {
+          s.Culled = BackFacing;
+          continue;
+        }
+        const splat::ResamplingKernel kernel =
+          splat::MakeResamplingKernel(projection, cutoff, filter);
+        if (!(kernel.Amplitude >= splat::NegligibleAmplitude))
+        {
+          s.Culled = Negligible;
+          continue;
+        }
         const glm::dvec2 lo = kernel.Center - kernel.HalfExtent - 0.5;
         const glm::dvec2 hi = kernel.Center + kernel.HalfExtent - 0.5;
         if (!(hi.x >= 0.0 && hi.y >= 0.0 && lo.x <= width - 1 && lo.y <= height - 1))
@@ -123,6 +149,11 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         s.X1 = static_cast<int>(std::floor(std::min(hi.x, width - 1.0)));
         s.Y0 = static_cast<int>(std::ceil(std::max(lo.y, 0.0)));
         s.Y1 = static_cast<int>(std::floor(std::min(hi.y, height - 1.0)));
+        if (s.X0 > s.X1 || s.Y0 > s.Y1)
+        {
+          continue; // the box holds no pixel center
+        }
+        s.Culled = Kept;
 
         s.CenterX = static_cast<float>(kernel.Center.x);
         s.CenterY = static_cast<float>(kernel.Center.y);
@@ -131,7 +162,6 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         s.ConicYY = static_cast<float>(0.5 * kernel.Conic[1][1]);
         s.Amplitude = static_cast<float>(kernel.Amplitude);
 
-        const glm::dvec3 eye(camera.ModelToEye * glm::dvec4(p, 1.0));
         splat::PlaneDepth depth;
         if (!splat::MakePlaneDepth(clipToModel, clipToEye, viewport, p, n, depth))
         {
@@ -149,9 +179,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         s.Threshold = static_cast<float>(depthThreshold * eyeRadius);
 
         // Two-sided lighting: turn every normal towards the viewer before it is filtered.
-        glm::dvec3 normal = glm::normalize(normalToEye * n);
-        const glm::dvec3 view = perspective ? eye : glm::dvec3(0.0, 0.0, -1.0);
-        if (glm::dot(normal, view) > 0.0)
+        if (backFacing)
         {
           normal = -normal;
         }
@@ -169,11 +197,12 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<vtkIdType>& offsets = this->Internal->BandOffsets;
   std::vector<vtkIdType>& bandSplats = this->Internal->BandSplats;
   offsets.assign(bands + 1, 0);
+  vtkIdType culled[4] = { 0, 0, 0, 0 };
   for (const ScreenSplat& s : splats)
   {
-    if (s.X0 > s.X1)
+    ++culled[s.Culled];
+    if (s.Culled != Kept)
     {
-      ++this->CulledCount;
       continue;
     }
     ++this->SplattedCount;
@@ -182,6 +211,9 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
       ++offsets[b + 1];
     }
   }
+  this->FrustumCulledCount = culled[OutsideFrustum];
+  this->BackfaceCulledCount = culled[BackFacing];
+  this->NegligibleCount = culled[Negligible];
   for (int b = 0; b < bands; ++b)
   {
     offsets[b + 1] += offsets[b];
@@ -192,7 +224,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
     for (std::size_t i = 0; i < splats.size(); ++i)
     {
       const ScreenSplat& s = splats[i];
-      if (s.X0 > s.X1)
+      if (s.Culled != Kept)
       {
         continue;
       }
@@ -223,10 +255,23 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           {
             const float py = y + 0.5f;
             const float dy = py - s.CenterY;
+            // The row's span inside the ellipse: roots of XX dx^2 + XY dy dx + YY dy^2 = cutoff.
+            const float b = s.ConicXY * dy;
+            const float discriminant = b * b - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - cutoffF);
+            if (!(discriminant > 0.0f))
+            {
+              continue;
+            }
+            const float root = std::sqrt(discriminant);
+            const float inverse = 0.5f / s.ConicXX;
+            const int xBegin =
+              std::max(s.X0, static_cast<int>(std::ceil(s.CenterX + (-b - root) * inverse - 0.5f)));
+            const int xEnd =
+              std::min(s.X1, static_cast<int>(std::floor(s.CenterX + (-b + root) * inverse - 0.5f)));
             const float rowNum = s.DepthNumerator[1] * py + s.DepthNumerator[2];
             const float rowDen = s.DepthDenominator[1] * py + s.DepthDenominator[2];
-            std::size_t pixel = static_cast<std::size_t>(y) * width + s.X0;
-            for (int x = s.X0; x <= s.X1; ++x, ++pixel)
+            std::size_t pixel = static_cast<std::size_t>(y) * width + xBegin;
+            for (int x = xBegin; x <= xEnd; ++x, ++pixel)
             {
               const float px = x + 0.5f;
               const float dx = px - s.CenterX;
@@ -340,7 +385,11 @@ void vtkSurfaceSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Cutoff: " << this->Cutoff << "\n";
   os << indent << "DepthThreshold: " << this->DepthThreshold << "\n";
+  os << indent << "Filter: " << static_cast<int>(this->Filter) << "\n";
+  os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
   os << indent << "SplattedCount: " << this->SplattedCount << "\n";
-  os << indent << "CulledCount: " << this->CulledCount << "\n";
+  os << indent << "FrustumCulledCount: " << this->FrustumCulledCount << "\n";
+  os << indent << "BackfaceCulledCount: " << this->BackfaceCulledCount << "\n";
+  os << indent << "NegligibleCount: " << this->NegligibleCount << "\n";
   os << indent << "FragmentCount: " << this->FragmentCount << "\n";
 }

@@ -27,7 +27,8 @@
 #include "SplatRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
-#include "SplatLighting.h" // For splat::Light, splat::Material
+#include "SplatLighting.h"     // For splat::Light, splat::Material
+#include "SplatSurfelKernel.h" // For splat::KernelFilter
 
 #include <glm/glm.hpp> // For the camera matrices
 
@@ -53,6 +54,20 @@ public:
    */
   vtkSetClampMacro(DepthThreshold, double, 0.0, 1e3);
   vtkGetMacro(DepthThreshold, double);
+
+  /**
+   * The screen-space filter: exact EWA (default), circular or unfiltered (paper 000, figure 8).
+   */
+  void SetFilter(splat::KernelFilter filter) { this->Filter = filter; }
+  splat::KernelFilter GetFilter() const { return this->Filter; }
+
+  /**
+   * Leave out splats whose normal faces away from the viewer: right for closed, opaque,
+   * consistently oriented surfaces only. Default off (two-sided splats).
+   */
+  vtkSetMacro(BackfaceCulling, bool);
+  vtkGetMacro(BackfaceCulling, bool);
+  vtkBooleanMacro(BackfaceCulling, bool);
 
   /**
    * The camera: model-to-eye and eye-to-clip (projection) matrices and the viewport in pixels.
@@ -108,11 +123,15 @@ public:
 
   ///@{
   /**
-   * What the last frame did: surfels splatted, culled (behind the eye, outside the near/far range
-   * or with a footprint outside the viewport), and pixel contributions written.
+   * What the last frame did: surfels splatted; surfels left out because they lie outside the
+   * view frustum (behind the eye, outside the near/far range, footprint outside the viewport),
+   * face away with BackfaceCulling on, or have a negligible peak weight (edge-on); and pixel
+   * contributions written.
    */
   vtkGetMacro(SplattedCount, vtkIdType);
-  vtkGetMacro(CulledCount, vtkIdType);
+  vtkGetMacro(FrustumCulledCount, vtkIdType);
+  vtkGetMacro(BackfaceCulledCount, vtkIdType);
+  vtkGetMacro(NegligibleCount, vtkIdType);
   vtkGetMacro(FragmentCount, vtkIdType);
   ///@}
 
@@ -125,9 +144,13 @@ protected:
 
   double Cutoff = 1.0;
   double DepthThreshold = 1.0;
+  splat::KernelFilter Filter = splat::KernelFilter::EWA;
+  bool BackfaceCulling = false;
 
   vtkIdType SplattedCount = 0;
-  vtkIdType CulledCount = 0;
+  vtkIdType FrustumCulledCount = 0;
+  vtkIdType BackfaceCulledCount = 0;
+  vtkIdType NegligibleCount = 0;
   vtkIdType FragmentCount = 0;
 
   std::vector<float> Weights;

@@ -1,10 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Unit tests of the screen-space EWA kernel (SplatSurfelKernel.h) and of the CPU rasterizer's
-// accumulation and normalization (paper 000, sections 3.3, 4 and 7).
+// Unit tests of the screen-space EWA kernel math (SplatSurfelKernel.h; paper 000, sections 3.3
+// and 4): Jacobian, kernel, bounding box, filters and tangent-plane depth.
 #include "SplatSurfelKernel.h"
-#include "vtkSurfaceSplatRasterizer.h"
-
-#include "vtkNew.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -12,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
-#include <vector>
 
 namespace
 {
@@ -30,57 +26,6 @@ glm::dvec2 ProjectToPixel(const glm::dmat4& modelToClip, const glm::dvec3& x)
   return (glm::dvec2(c) / c.w + 1.0) * 0.5 * Viewport;
 }
 
-// Surfels on a regular grid of spacing h in the plane z = 0 with radius h.
-struct SurfelGrid
-{
-  std::vector<double> Positions;
-  std::vector<float> Normals, Axes0, Axes1, Colors;
-
-  SurfelGrid(int n, double h, const glm::vec3& color)
-  {
-    for (int j = 0; j < n; ++j)
-    {
-      for (int i = 0; i < n; ++i)
-      {
-        const double p[3] = { (i - 0.5 * (n - 1)) * h, (j - 0.5 * (n - 1)) * h, 0.0 };
-        const float normal[3] = { 0.f, 0.f, 1.f };
-        const float a0[3] = { static_cast<float>(h), 0.f, 0.f };
-        const float a1[3] = { 0.f, static_cast<float>(h), 0.f };
-        for (int c = 0; c < 3; ++c)
-        {
-          this->Positions.push_back(p[c]);
-          this->Normals.push_back(normal[c]);
-          this->Axes0.push_back(a0[c]);
-          this->Axes1.push_back(a1[c]);
-          this->Colors.push_back(color[c]);
-        }
-      }
-    }
-  }
-
-  vtkSurfaceSplatRasterizer::Surfels View() const
-  {
-    vtkSurfaceSplatRasterizer::Surfels s;
-    s.Positions = this->Positions.data();
-    s.Normals = this->Normals.data();
-    s.Axes0 = this->Axes0.data();
-    s.Axes1 = this->Axes1.data();
-    s.Colors = this->Colors.data();
-    s.Count = this->Normals.size() / 3;
-    return s;
-  }
-};
-
-// A camera looking down -z at the plane z = 0 from distance d, square viewport.
-vtkSurfaceSplatRasterizer::Camera FrontoParallelCamera(double distance, int size)
-{
-  vtkSurfaceSplatRasterizer::Camera camera;
-  camera.ModelToEye = glm::lookAt(
-    glm::dvec3(0.0, 0.0, distance), glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0));
-  camera.EyeToClip = glm::perspective(glm::radians(30.0), 1.0, 0.1 * distance, 10.0 * distance);
-  camera.Viewport = glm::ivec2(size, size);
-  return camera;
-}
 }
 
 // J of eq. (4) against central differences of the real perspective projection.
@@ -164,94 +109,6 @@ TEST(SurfelKernel, BoundingBoxIsTightAroundTheCutoffEllipse)
   }
 }
 
-// Before normalization, kernels of surfels on a regular grid with radius = spacing sum to 1
-// (partition of unity) under magnification and minification alike; truncation at the cutoff c
-// keeps the fraction 1 - e^-c of each kernel's mass.
-TEST(SurfelKernel, PartitionOfUnityOnARegularGrid)
-{
-  struct Case
-  {
-    double Distance; // camera distance: sets pixels per spacing
-    double Cutoff;
-    double Expected;
-    double Tolerance;
-  };
-  const double h = 0.01;
-  const int n = 101;
-  const int size = 256;
-  const double e = std::exp(-1.0);
-  const Case cases[] = {
-    { 0.6, 12.0, 1.0, 0.01 },  // ~8 pixels per spacing: magnified
-    { 12.0, 12.0, 1.0, 0.01 }, // ~0.4 pixels per spacing: minified, the low-pass dominates
-    { 0.6, 1.0, 1.0 - e, 0.18 }, // default cutoff: mean 1 - 1/e, truncation ripple 0.46..0.78
-  };
-  const SurfelGrid grid(n, h, glm::vec3(1.0f));
-  for (const Case& c : cases)
-  {
-    vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
-    rasterizer->SetCutoff(c.Cutoff);
-    rasterizer->Splat(grid.View(), FrontoParallelCamera(c.Distance, size));
-    const std::vector<float>& weights = rasterizer->GetWeights();
-    // The grid's interior: pixels at least 5 spacings inside its edges.
-    const double halfWidth = 0.5 * (n - 1) * h - 5.0 * h;
-    const double pixelsPerUnit = 0.5 * size / (c.Distance * std::tan(glm::radians(15.0)));
-    const int margin =
-      std::max(0, static_cast<int>(std::ceil(0.5 * size - halfWidth * pixelsPerUnit)));
-    ASSERT_LT(margin, size / 2);
-    double sum = 0.0, low = 1e9, high = -1e9;
-    int count = 0;
-    for (int y = margin; y < size - margin; ++y)
-    {
-      for (int x = margin; x < size - margin; ++x)
-      {
-        const double w = weights[static_cast<std::size_t>(y) * size + x];
-        sum += w;
-        low = std::min(low, w);
-        high = std::max(high, w);
-        ++count;
-      }
-    }
-    ASSERT_GT(count, 100);
-    const double mean = sum / count;
-    EXPECT_NEAR(mean, c.Expected, 0.01) << "distance " << c.Distance << " cutoff " << c.Cutoff;
-    EXPECT_GT(low, c.Expected - c.Tolerance) << "distance " << c.Distance;
-    EXPECT_LT(high, c.Expected + c.Tolerance) << "distance " << c.Distance;
-    if (c.Cutoff == 1.0)
-    {
-      // Section 7's full-coverage threshold tau = 0.4 sits below every interior sum.
-      EXPECT_GT(low, 0.4);
-    }
-  }
-}
-
-// After normalization (eq. 9) a constant-color plane renders exactly that color.
-TEST(SurfelKernel, NormalizedConstantPlaneHasExactlyItsColor)
-{
-  const glm::vec3 color(0.2f, 0.6f, 0.8f);
-  const SurfelGrid grid(61, 0.01, color);
-  vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
-  splat::Material unlit;
-  unlit.Ambient = 0.0f;
-  unlit.Diffuse = 1.0f;
-  rasterizer->Render(grid.View(), FrontoParallelCamera(1.0, 128), {}, unlit);
-  const std::vector<std::uint8_t>& rgba = rasterizer->GetColors();
-  const int expected[3] = { 51, 153, 204 };
-  int covered = 0;
-  for (std::size_t pixel = 0; pixel < rgba.size() / 4; ++pixel)
-  {
-    if (rgba[4 * pixel + 3] == 0)
-    {
-      continue;
-    }
-    ++covered;
-    for (int c = 0; c < 3; ++c)
-    {
-      ASSERT_EQ(rgba[4 * pixel + c], expected[c]) << "pixel " << pixel;
-    }
-  }
-  EXPECT_GT(covered, 128 * 128 / 2);
-}
-
 // The tangent plane's depth along each pixel's ray is exact: a tilted plane's depth at every
 // covered pixel equals the ray/plane intersection, not the affine approximation.
 TEST(SurfelKernel, PlaneDepthIsTheRayIntersection)
@@ -280,5 +137,40 @@ TEST(SurfelKernel, PlaneDepthIsTheRayIntersection)
       const double expected = -(view * glm::dvec4(hit, 1.0)).z;
       EXPECT_NEAR(depth(x, y), expected, 1e-9 * expected);
     }
+  }
+}
+
+// The figure-8 baselines: circular kernels are the circle of the EWA ellipse's major axis;
+// unfiltered kernels drop the low-pass and shrink below a pixel when minified.
+TEST(SurfelKernel, CircularAndUnfilteredFilters)
+{
+  splat::SurfelProjection projection;
+  projection.Jacobian = glm::dmat2(6.0, 1.0, 0.5, 0.3); // magnified along one axis only
+  const splat::ResamplingKernel ewa = splat::MakeResamplingKernel(projection, 1.0);
+  const splat::ResamplingKernel circle =
+    splat::MakeResamplingKernel(projection, 1.0, splat::KernelFilter::Circular);
+  const double trace = ewa.Covariance[0][0] + ewa.Covariance[1][1];
+  const double major = 0.5 * trace +
+    std::sqrt(0.25 * trace * trace - glm::determinant(ewa.Covariance));
+  EXPECT_NEAR(circle.Covariance[0][0], major, 1e-12 * major);
+  EXPECT_NEAR(circle.Covariance[1][1], major, 1e-12 * major);
+  EXPECT_EQ(circle.Covariance[0][1], 0.0);
+  EXPECT_DOUBLE_EQ(circle.HalfExtent.x, circle.HalfExtent.y);
+
+  projection.Jacobian = glm::dmat2(0.1, 0.0, 0.0, 0.1); // minified: 0.1 pixel per axis unit
+  const splat::ResamplingKernel unfiltered =
+    splat::MakeResamplingKernel(projection, 1.0, splat::KernelFilter::Unfiltered);
+  const splat::ResamplingKernel filtered = splat::MakeResamplingKernel(projection, 1.0);
+  EXPECT_LT(unfiltered.HalfExtent.x, 0.2);
+  EXPECT_GT(filtered.HalfExtent.x, 1.4); // the low-pass keeps at least a pixel
+  // Edge-on: finite, and negligible, whatever the filter.
+  projection.Jacobian = glm::dmat2(3.0, 0.0, 6.0, 0.0);
+  for (splat::KernelFilter filter : { splat::KernelFilter::EWA, splat::KernelFilter::Circular,
+         splat::KernelFilter::Unfiltered })
+  {
+    const splat::ResamplingKernel k = splat::MakeResamplingKernel(projection, 1.0, filter);
+    EXPECT_TRUE(std::isfinite(k.Amplitude) && std::isfinite(k.HalfExtent.x) &&
+      std::isfinite(k.Conic[0][0]));
+    EXPECT_LT(k.Amplitude, splat::NegligibleAmplitude);
   }
 }

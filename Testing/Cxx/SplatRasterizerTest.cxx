@@ -1,0 +1,327 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Unit tests of the CPU rasterizer (vtkSurfaceSplatRasterizer): accumulation and normalization
+// (paper 000, sections 4 and 7), elliptical surfels, culling, and thread-independent results.
+#include "vtkSurfaceSplatRasterizer.h"
+
+#include "vtkNew.h"
+#include "vtkSMPTools.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+namespace
+{
+// Surfels on a regular nx x ny grid in the plane z = 0, spacing (hx, hy), centered at the origin,
+// with tangent axes a0 = (ax, 0, 0), a1 = (0, ay, 0) and a color from a function of position.
+struct SurfelGrid
+{
+  std::vector<double> Positions;
+  std::vector<float> Normals, Axes0, Axes1, Colors;
+
+  SurfelGrid(int nx, int ny, double hx, double hy, double ax, double ay,
+    const std::function<glm::vec3(double, double)>& color)
+  {
+    for (int j = 0; j < ny; ++j)
+    {
+      for (int i = 0; i < nx; ++i)
+      {
+        const double x = (i - 0.5 * (nx - 1)) * hx;
+        const double y = (j - 0.5 * (ny - 1)) * hy;
+        const glm::vec3 c = color(x, y);
+        const float values[5][3] = { { 0.f, 0.f, 1.f }, { static_cast<float>(ax), 0.f, 0.f },
+          { 0.f, static_cast<float>(ay), 0.f }, { c.x, c.y, c.z } };
+        this->Positions.insert(this->Positions.end(), { x, y, 0.0 });
+        this->Normals.insert(this->Normals.end(), values[0], values[0] + 3);
+        this->Axes0.insert(this->Axes0.end(), values[1], values[1] + 3);
+        this->Axes1.insert(this->Axes1.end(), values[2], values[2] + 3);
+        this->Colors.insert(this->Colors.end(), values[3], values[3] + 3);
+      }
+    }
+  }
+
+  // A square grid of spacing h with circular surfels of radius h.
+  SurfelGrid(int n, double h, const glm::vec3& color)
+    : SurfelGrid(n, n, h, h, h, h, [color](double, double) { return color; })
+  {
+  }
+
+  vtkSurfaceSplatRasterizer::Surfels View() const
+  {
+    vtkSurfaceSplatRasterizer::Surfels s;
+    s.Positions = this->Positions.data();
+    s.Normals = this->Normals.data();
+    s.Axes0 = this->Axes0.data();
+    s.Axes1 = this->Axes1.data();
+    s.Colors = this->Colors.data();
+    s.Count = this->Normals.size() / 3;
+    return s;
+  }
+};
+
+// A camera on the +z axis at the given distance looking at the origin, square viewport.
+vtkSurfaceSplatRasterizer::Camera FrontoParallelCamera(double distance, int size)
+{
+  vtkSurfaceSplatRasterizer::Camera camera;
+  camera.ModelToEye = glm::lookAt(
+    glm::dvec3(0.0, 0.0, distance), glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0));
+  camera.EyeToClip = glm::perspective(glm::radians(30.0), 1.0, 0.1 * distance, 10.0 * distance);
+  camera.Viewport = glm::ivec2(size, size);
+  return camera;
+}
+
+// Pixels per model unit at the origin for FrontoParallelCamera.
+double PixelsPerUnit(double distance, int size)
+{
+  return 0.5 * size / (distance * std::tan(glm::radians(15.0)));
+}
+
+splat::Material Unlit()
+{
+  splat::Material material;
+  material.Ambient = 0.0f;
+  material.Diffuse = 1.0f;
+  return material;
+}
+}
+
+// Before normalization, kernels of surfels on a regular grid with radius = spacing sum to 1
+// (partition of unity) under magnification and minification alike; truncation at the cutoff c
+// keeps the fraction 1 - e^-c of each kernel's mass.
+TEST(SurfaceSplatRasterizer, PartitionOfUnityOnARegularGrid)
+{
+  struct Case
+  {
+    double Distance; // camera distance: sets pixels per spacing
+    double Cutoff;
+    double Expected;
+    double Tolerance;
+  };
+  const double h = 0.01;
+  const int n = 101;
+  const int size = 256;
+  const double e = std::exp(-1.0);
+  const Case cases[] = {
+    { 0.6, 12.0, 1.0, 0.01 },    // ~8 pixels per spacing: magnified
+    { 12.0, 12.0, 1.0, 0.01 },   // ~0.4 pixels per spacing: minified, the low-pass dominates
+    { 0.6, 1.0, 1.0 - e, 0.18 }, // default cutoff: mean 1 - 1/e, truncation ripple 0.46..0.78
+  };
+  const SurfelGrid grid(n, h, glm::vec3(1.0f));
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+    rasterizer->SetCutoff(c.Cutoff);
+    rasterizer->Splat(grid.View(), FrontoParallelCamera(c.Distance, size));
+    const std::vector<float>& weights = rasterizer->GetWeights();
+    // The grid's interior: pixels at least 5 spacings inside its edges.
+    const double halfWidth = (0.5 * (n - 1) - 5.0) * h * PixelsPerUnit(c.Distance, size);
+    const int margin = std::max(0, static_cast<int>(std::ceil(0.5 * size - halfWidth)));
+    ASSERT_LT(margin, size / 2);
+    double sum = 0.0, low = 1e9, high = -1e9;
+    int count = 0;
+    for (int y = margin; y < size - margin; ++y)
+    {
+      for (int x = margin; x < size - margin; ++x)
+      {
+        const double w = weights[static_cast<std::size_t>(y) * size + x];
+        sum += w;
+        low = std::min(low, w);
+        high = std::max(high, w);
+        ++count;
+      }
+    }
+    ASSERT_GT(count, 100);
+    const double mean = sum / count;
+    EXPECT_NEAR(mean, c.Expected, 0.01) << "distance " << c.Distance << " cutoff " << c.Cutoff;
+    EXPECT_GT(low, c.Expected - c.Tolerance) << "distance " << c.Distance;
+    EXPECT_LT(high, c.Expected + c.Tolerance) << "distance " << c.Distance;
+    if (c.Cutoff == 1.0)
+    {
+      // Section 7's full-coverage threshold tau = 0.4 sits below every interior sum.
+      EXPECT_GT(low, 0.4);
+    }
+  }
+}
+
+// Without the low-pass filter, minified splats alias: a sine with a period of 6 samples, smooth
+// for the splats, seen at about 0.22 pixels per sample (a period of 1.3 pixels, above Nyquist)
+// comes out as a false low-frequency pattern, where EWA's low-pass averages it to its mean.
+TEST(SurfaceSplatRasterizer, UnfilteredMinifiedSplatsAlias)
+{
+  const double h = 0.01;
+  auto sine = [h](double x, double)
+  { return glm::vec3(static_cast<float>(0.5 + 0.5 * std::sin(2.0 * M_PI * x / (6.0 * h)))); };
+  const SurfelGrid grid(101, 101, h, h, h, h, sine);
+  auto deviation = [&](splat::KernelFilter filter)
+  {
+    vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+    rasterizer->SetFilter(filter);
+    rasterizer->Render(grid.View(), FrontoParallelCamera(22.0, 256), {}, Unlit());
+    const std::vector<std::uint8_t>& rgba = rasterizer->GetColors();
+    double squared = 0.0;
+    for (int y = 120; y < 136; ++y)
+    {
+      for (int x = 120; x < 136; ++x)
+      {
+        const double d = rgba[4 * (static_cast<std::size_t>(y) * 256 + x)] / 255.0 - 0.5;
+        squared += d * d;
+      }
+    }
+    return std::sqrt(squared / (16 * 16));
+  };
+  const double ewa = deviation(splat::KernelFilter::EWA);
+  const double unfiltered = deviation(splat::KernelFilter::Unfiltered);
+  std::printf("deviation from the mean gray: EWA %.4f, unfiltered %.4f\n", ewa, unfiltered);
+  EXPECT_LT(ewa, 0.05);
+  EXPECT_GT(unfiltered, 0.2);
+}
+
+// After normalization (eq. 9) a constant-color plane renders exactly that color.
+TEST(SurfaceSplatRasterizer, NormalizedConstantPlaneHasExactlyItsColor)
+{
+  const glm::vec3 color(0.2f, 0.6f, 0.8f);
+  const SurfelGrid grid(61, 0.01, color);
+  vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+  rasterizer->Render(grid.View(), FrontoParallelCamera(1.0, 128), {}, Unlit());
+  const std::vector<std::uint8_t>& rgba = rasterizer->GetColors();
+  const int expected[3] = { 51, 153, 204 };
+  int covered = 0;
+  for (std::size_t pixel = 0; pixel < rgba.size() / 4; ++pixel)
+  {
+    if (rgba[4 * pixel + 3] == 0)
+    {
+      continue;
+    }
+    ++covered;
+    for (int c = 0; c < 3; ++c)
+    {
+      ASSERT_EQ(rgba[4 * pixel + c], expected[c]) << "pixel " << pixel;
+    }
+  }
+  EXPECT_GT(covered, 128 * 128 / 2);
+}
+
+// A plane sampled 4:1 (spacing 4h along x, h along y) with matching elliptical surfels has no
+// holes and reproduces a texture varying along y better than circular surfels of the major
+// radius 4h, which blur it.
+TEST(SurfaceSplatRasterizer, EllipticalSurfelsOnAnisotropicSampling)
+{
+  const double h = 0.01;
+  const double frequency = 2.0 * M_PI / (8.0 * h); // a period of 8 samples along y
+  auto texture = [frequency](double, double y)
+  { return glm::vec3(static_cast<float>(0.5 + 0.4 * std::sin(frequency * y))); };
+  const SurfelGrid elliptical(26, 101, 4.0 * h, h, 4.0 * h, h, texture);
+  const SurfelGrid circular(26, 101, 4.0 * h, h, 4.0 * h, 4.0 * h, texture);
+  const int size = 256;
+  const double distance = 1.2;
+  const double pixelsPerUnit = PixelsPerUnit(distance, size);
+
+  auto error = [&](const SurfelGrid& grid, int& holes)
+  {
+    vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+    rasterizer->Render(grid.View(), FrontoParallelCamera(distance, size), {}, Unlit());
+    const std::vector<std::uint8_t>& rgba = rasterizer->GetColors();
+    double squared = 0.0;
+    int count = 0;
+    holes = 0;
+    // The interior, 8 samples inside the grid's edges.
+    const double half = 0.5 * 100 * h - 8.0 * h;
+    for (int y = 0; y < size; ++y)
+    {
+      for (int x = 0; x < size; ++x)
+      {
+        const double px = (x + 0.5 - 0.5 * size) / pixelsPerUnit;
+        const double py = (y + 0.5 - 0.5 * size) / pixelsPerUnit;
+        if (std::abs(px) > half || std::abs(py) > half)
+        {
+          continue;
+        }
+        const std::size_t pixel = static_cast<std::size_t>(y) * size + x;
+        holes += rgba[4 * pixel + 3] == 0;
+        const double d = rgba[4 * pixel] / 255.0 - texture(px, py).x;
+        squared += d * d;
+        ++count;
+      }
+    }
+    return std::sqrt(squared / count);
+  };
+  int ellipticalHoles = 0, circularHoles = 0;
+  const double ellipticalError = error(elliptical, ellipticalHoles);
+  const double circularError = error(circular, circularHoles);
+  std::printf("texture RMSE: elliptical %.4f, circular %.4f\n", ellipticalError, circularError);
+  EXPECT_EQ(ellipticalHoles, 0);
+  EXPECT_LT(ellipticalError, 0.5 * circularError);
+}
+
+// Back-facing splats are left out only when asked, edge-on ones always, splats behind the eye
+// always; all are counted.
+TEST(SurfaceSplatRasterizer, CullsBackFacingNegligibleAndOutsideSplats)
+{
+  SurfelGrid grid(11, 0.05, glm::vec3(1.0f));
+  const vtkIdType count = static_cast<vtkIdType>(grid.Normals.size() / 3);
+  for (vtkIdType i = 1; i < count; i += 2)
+  {
+    grid.Normals[3 * i + 2] = -1.0f; // faces away from the camera on +z
+  }
+  // The center surfel (index 60, on the optical axis) edge-on: its plane holds the view ray.
+  const std::size_t center = 60;
+  grid.Normals[3 * center + 1] = 1.0f;
+  grid.Normals[3 * center + 2] = 0.0f;
+  grid.Axes1[3 * center + 1] = 0.0f;
+  grid.Axes1[3 * center + 2] = 0.05f;
+
+  vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+  rasterizer->Splat(grid.View(), FrontoParallelCamera(2.0, 128));
+  EXPECT_EQ(rasterizer->GetBackfaceCulledCount(), 0);
+  EXPECT_EQ(rasterizer->GetNegligibleCount(), 1);
+  EXPECT_EQ(rasterizer->GetFrustumCulledCount(), 0);
+  EXPECT_EQ(rasterizer->GetSplattedCount(), count - 1);
+
+  rasterizer->BackfaceCullingOn();
+  rasterizer->Splat(grid.View(), FrontoParallelCamera(2.0, 128));
+  EXPECT_EQ(rasterizer->GetBackfaceCulledCount(), count / 2);
+  EXPECT_EQ(rasterizer->GetNegligibleCount(), 1);
+  EXPECT_EQ(rasterizer->GetSplattedCount(), count - count / 2 - 1);
+
+  // A camera looking away from the grid: everything is behind the eye.
+  vtkSurfaceSplatRasterizer::Camera away = FrontoParallelCamera(2.0, 128);
+  away.ModelToEye = glm::lookAt(
+    glm::dvec3(0.0, 0.0, 2.0), glm::dvec3(0.0, 0.0, 4.0), glm::dvec3(0.0, 1.0, 0.0));
+  rasterizer->BackfaceCullingOff();
+  rasterizer->Splat(grid.View(), away);
+  EXPECT_EQ(rasterizer->GetSplattedCount(), 0);
+  EXPECT_EQ(rasterizer->GetFrustumCulledCount(), count);
+}
+
+// The image does not depend on the number of threads: bands are splatted in input order.
+TEST(SurfaceSplatRasterizer, SameImageForOneAndTwoThreads)
+{
+  auto texture = [](double x, double y)
+  { return glm::vec3(static_cast<float>(0.5 + 0.5 * std::sin(40.0 * x)), 0.3f,
+      static_cast<float>(0.5 + 0.5 * std::cos(30.0 * y))); };
+  const SurfelGrid grid(201, 201, 0.005, 0.005, 0.006, 0.006, texture);
+  std::vector<splat::Light> lights(1);
+  lights[0].Direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
+  splat::Material material;
+  material.Specular = glm::vec3(0.3f);
+  material.SpecularPower = 20.0f;
+
+  std::vector<std::vector<std::uint8_t>> images;
+  std::vector<std::vector<float>> depths;
+  for (int threads : { 1, 2, 1 })
+  {
+    vtkSMPTools::Initialize(threads);
+    ASSERT_EQ(vtkSMPTools::GetEstimatedNumberOfThreads(), threads);
+    vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+    rasterizer->Render(grid.View(), FrontoParallelCamera(1.5, 300), lights, material);
+    images.push_back(rasterizer->GetColors());
+    depths.push_back(rasterizer->GetDepths());
+  }
+  EXPECT_TRUE(images[0] == images[1]);
+  EXPECT_TRUE(images[0] == images[2]);
+  EXPECT_TRUE(depths[0] == depths[1]);
+}
