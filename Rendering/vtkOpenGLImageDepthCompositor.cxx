@@ -41,7 +41,7 @@ vtkOpenGLImageDepthCompositor::~vtkOpenGLImageDepthCompositor() = default;
 
 //------------------------------------------------------------------------------
 void vtkOpenGLImageDepthCompositor::Draw(vtkRenderer* renderer, int width, int height,
-  const std::uint8_t* rgba, const float* depth)
+  const std::uint8_t* rgba, const float* depth, bool writeDepth)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
   if (!window || width <= 0 || height <= 0)
@@ -80,10 +80,12 @@ void vtkOpenGLImageDepthCompositor::Draw(vtkRenderer* renderer, int width, int h
   vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
   vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
   state->vtkglEnable(GL_DEPTH_TEST);
-  state->vtkglDisable(GL_BLEND);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   state->vtkglDepthFunc(GL_LEQUAL);
-  state->vtkglDepthMask(GL_TRUE);
+  state->vtkglDepthMask(writeDepth ? GL_TRUE : GL_FALSE);
 
   this->ColorTexture->Activate();
   this->DepthTexture->Activate();
@@ -92,6 +94,38 @@ void vtkOpenGLImageDepthCompositor::Draw(vtkRenderer* renderer, int width, int h
   this->Quad->Render();
   this->ColorTexture->Deactivate();
   this->DepthTexture->Deactivate();
+}
+
+//------------------------------------------------------------------------------
+bool vtkOpenGLImageDepthCompositor::ReadDepths(vtkRenderer* renderer, std::vector<float>& depths)
+{
+  depths.clear();
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    return false;
+  }
+  int width, height, x, y;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  vtkOpenGLState* state = window->GetState();
+  // Read from the framebuffer being drawn into (the window's or a render pass's).
+  GLint drawFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer);
+  state->PushReadFramebufferBinding();
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer));
+  while (glGetError() != GL_NO_ERROR)
+  {
+    // Clear earlier errors: the check below is about this read only.
+  }
+  depths.resize(static_cast<std::size_t>(width) * height);
+  glReadPixels(x, y, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
+  const bool ok = glGetError() == GL_NO_ERROR;
+  state->PopReadFramebufferBinding();
+  if (!ok)
+  {
+    depths.clear();
+  }
+  return ok;
 }
 
 //------------------------------------------------------------------------------

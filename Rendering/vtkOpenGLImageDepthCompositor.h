@@ -5,8 +5,10 @@
  *
  * The CPU backends render splats into memory; this class puts that image into the renderer's
  * viewport as a full-viewport quad that writes gl_FragDepth and is depth-tested against what is
- * already there, so splats and ordinary actors occlude each other in either drawing order.
- * Pixels with alpha 0 are discarded.
+ * already there, so splats and ordinary actors occlude each other in either drawing order. The
+ * colors are premultiplied by alpha and blended over the framebuffer (partly covered edge
+ * pixels, translucent splats). Pixels with alpha 0 are discarded. It also reads the scene's
+ * depth back, for translucent splats that must be hidden behind opaque geometry.
  */
 #ifndef vtkOpenGLImageDepthCompositor_h
 #define vtkOpenGLImageDepthCompositor_h
@@ -17,6 +19,7 @@
 
 #include <cstdint> // For std::uint8_t
 #include <memory>  // For std::unique_ptr
+#include <vector>  // For the depth read-back
 
 class vtkOpenGLQuadHelper;
 class vtkRenderer;
@@ -31,11 +34,19 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /**
-   * Draws width x height pixels (rows from the bottom): RGBA bytes and window-space depth in
-   * [0, 1]. The size must be the renderer's viewport size.
+   * Draws width x height pixels (rows from the bottom): premultiplied RGBA bytes and
+   * window-space depth in [0, 1]. The size must be the renderer's viewport size. Translucent
+   * images are depth-tested without writing depth, so that what is drawn later behind them
+   * still shows through.
    */
   void Draw(vtkRenderer* renderer, int width, int height, const std::uint8_t* rgba,
-    const float* depth);
+    const float* depth, bool writeDepth);
+
+  /**
+   * The window-space depth of the renderer's viewport as drawn so far, rows from the bottom.
+   * Returns false (and leaves depths empty) when the framebuffer's depth cannot be read.
+   */
+  bool ReadDepths(vtkRenderer* renderer, std::vector<float>& depths);
 
   /**
    * Releases the textures and the shader program of the window.

@@ -37,6 +37,7 @@ struct vtkSurfaceSplatMapper::SurfelArrays
   std::vector<float> Axes0;
   std::vector<float> Axes1;
   std::vector<float> Colors;
+  std::vector<float> Opacities; // empty when every opacity is 1
   bool ColorsFromScalars = false;
   vtkMTimeType BuildTime = 0;
 
@@ -48,6 +49,7 @@ struct vtkSurfaceSplatMapper::SurfelArrays
     s.Axes0 = this->Axes0.data();
     s.Axes1 = this->Axes1.data();
     s.Colors = this->Colors.data();
+    s.Opacities = this->Opacities.empty() ? nullptr : this->Opacities.data();
     s.Count = this->Normals.size() / 3;
     return s;
   }
@@ -147,6 +149,7 @@ vtkSurfaceSplatMapper::vtkSurfaceSplatMapper()
   : Surfels(new SurfelArrays)
 {
   this->SetRadiusArrayName("Radius");
+  this->SetOpacityArrayName("Opacity");
   this->SetTangentAxis0ArrayName("TangentAxis0");
   this->SetTangentAxis1ArrayName("TangentAxis1");
 }
@@ -155,6 +158,7 @@ vtkSurfaceSplatMapper::vtkSurfaceSplatMapper()
 vtkSurfaceSplatMapper::~vtkSurfaceSplatMapper()
 {
   this->SetRadiusArrayName(nullptr);
+  this->SetOpacityArrayName(nullptr);
   this->SetTangentAxis0ArrayName(nullptr);
   this->SetTangentAxis1ArrayName(nullptr);
 }
@@ -189,6 +193,54 @@ void vtkSurfaceSplatMapper::SetDepthThreshold(double threshold)
 double vtkSurfaceSplatMapper::GetDepthThreshold()
 {
   return this->Rasterizer->GetDepthThreshold();
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::SetNumberOfLayers(int layers)
+{
+  if (layers != this->Rasterizer->GetNumberOfLayers())
+  {
+    this->Rasterizer->SetNumberOfLayers(layers);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkSurfaceSplatMapper::GetNumberOfLayers()
+{
+  return this->Rasterizer->GetNumberOfLayers();
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::SetEdgeAntialiasing(bool antialiasing)
+{
+  if (antialiasing != this->Rasterizer->GetEdgeAntialiasing())
+  {
+    this->Rasterizer->SetEdgeAntialiasing(antialiasing);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfaceSplatMapper::GetEdgeAntialiasing()
+{
+  return this->Rasterizer->GetEdgeAntialiasing();
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::SetCoverageThreshold(double tau)
+{
+  if (tau != this->Rasterizer->GetCoverageThreshold())
+  {
+    this->Rasterizer->SetCoverageThreshold(tau);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+double vtkSurfaceSplatMapper::GetCoverageThreshold()
+{
+  return this->Rasterizer->GetCoverageThreshold();
 }
 
 //------------------------------------------------------------------------------
@@ -268,6 +320,15 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
                                      << "' has several components; using the global Radius.");
     radii = nullptr;
   }
+  vtkDataArray* opacities =
+    this->OpacityArrayName ? pointData->GetArray(this->OpacityArrayName) : nullptr;
+  if (opacities && opacities->GetNumberOfComponents() != 1)
+  {
+    vtkWarningMacro("Opacity array '" << this->OpacityArrayName
+                                      << "' has several components; it is ignored.");
+    opacities = nullptr;
+  }
+  const double actorOpacity = property->GetOpacity();
   int cellFlag = 0;
   vtkUnsignedCharArray* scalarColors = this->MapScalars(input, 1.0, cellFlag);
   if (scalarColors && cellFlag != 0)
@@ -284,6 +345,8 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
   s.Axes0.clear();
   s.Axes1.clear();
   s.Colors.clear();
+  s.Opacities.clear();
+  bool translucent = false;
   for (auto* v : { &s.Normals, &s.Axes0, &s.Axes1, &s.Colors })
   {
     v->reserve(3 * n);
@@ -336,6 +399,12 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
     {
       scalarColors->GetTypedTuple(i, rgba);
     }
+    // NaN or out-of-range opacities are clamped: an invalid opacity must not skip a point.
+    const double pointOpacity = opacities ? opacities->GetComponent(i, 0) : 1.0;
+    const double opacity = actorOpacity * (rgba[3] / 255.0) *
+      (std::isnan(pointOpacity) ? 1.0 : std::min(std::max(pointOpacity, 0.0), 1.0));
+    s.Opacities.push_back(static_cast<float>(opacity));
+    translucent = translucent || opacity < 1.0;
     for (int c = 0; c < 3; ++c)
     {
       s.Positions.push_back(p[c]);
@@ -345,6 +414,10 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
       s.Colors.push_back(
         scalarColors ? rgba[c] / 255.0f : static_cast<float>(diffuseColor[c]));
     }
+  }
+  if (!translucent)
+  {
+    s.Opacities.clear();
   }
   this->NumberOfSkippedPoints = skipped;
   if (skipped > 0)
@@ -398,10 +471,19 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
   this->NumberOfSplats = static_cast<vtkIdType>(this->Surfels->Normals.size() / 3);
   this->Rasterizer->SetFilter(static_cast<splat::KernelFilter>(this->FilterMode));
   this->Rasterizer->SetBackfaceCulling(property->GetBackfaceCulling());
+  // Translucent splats behind opaque geometry drawn before them must be dropped fragment by
+  // fragment, not only where the nearest one is hidden: they need the scene's depth.
+  const bool translucent = !this->Surfels->Opacities.empty();
+  std::vector<float> sceneDepths;
+  if (translucent)
+  {
+    this->Compositor->ReadDepths(ren, sceneDepths);
+  }
+  this->Rasterizer->SetSceneDepths(std::move(sceneDepths));
   this->Rasterizer->Render(
     this->Surfels->View(), view, lights, MaterialOf(property, this->Surfels->ColorsFromScalars));
   this->Compositor->Draw(ren, width, height, this->Rasterizer->GetColors().data(),
-    this->Rasterizer->GetDepths().data());
+    this->Rasterizer->GetDepths().data(), !translucent);
 
   this->LastRenderTimeInMilliseconds =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -463,6 +545,11 @@ void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Radius: " << this->Radius << "\n";
   os << indent << "RadiusArrayName: " << (this->RadiusArrayName ? this->RadiusArrayName : "(none)")
      << "\n";
+  os << indent << "OpacityArrayName: " << (this->OpacityArrayName ? this->OpacityArrayName : "(none)")
+     << "\n";
+  os << indent << "NumberOfLayers: " << this->Rasterizer->GetNumberOfLayers() << "\n";
+  os << indent << "EdgeAntialiasing: " << this->Rasterizer->GetEdgeAntialiasing() << "\n";
+  os << indent << "CoverageThreshold: " << this->Rasterizer->GetCoverageThreshold() << "\n";
   os << indent << "TangentAxis0ArrayName: "
      << (this->TangentAxis0ArrayName ? this->TangentAxis0ArrayName : "(none)") << "\n";
   os << indent << "TangentAxis1ArrayName: "

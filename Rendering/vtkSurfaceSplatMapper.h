@@ -17,6 +17,8 @@
  * - optionally, elliptical surfels: two tangent-axis arrays of 3-vectors (TangentAxis0ArrayName,
  *   TangentAxis1ArrayName, default "TangentAxis0" and "TangentAxis1") whose lengths are the
  *   ellipse's semi-axes; they replace the radius, and give the normal where none is present;
+ * - an optional per-point opacity array (OpacityArrayName, default "Opacity"), multiplied with the
+ *   actor's opacity and the alpha of the scalar colors;
  * - a per-point radius array (RadiusArrayName, default "Radius"), or the global Radius. The radius
  *   is the extent of the splat's disk at the default cutoff: the Gaussian basis function has
  *   variance Radius^2 / 2 (see SplatSurfelKernel.h). For points sampled with spacing h, a radius
@@ -28,8 +30,14 @@
  * frustum, splats facing away when the actor's property has BackfaceCulling on (for closed,
  * consistently oriented, opaque surfaces), and splats whose peak weight is negligible (edge-on).
  *
+ * Transparency is order-independent within the mapper: a translucent input is splatted into a
+ * frame buffer of NumberOfLayers fragments per pixel (paper 000, section 6) and blended back to
+ * front; an opaque one uses a single layer. Edge antialiasing multiplies each pixel's coverage,
+ * estimated from its summed kernel weights, into its alpha (section 7).
+ *
  * Rendering runs on the multithreaded CPU rasterizer (vtkSurfaceSplatRasterizer, threads from
- * vtkSMPTools); the image and its depth are then drawn into the OpenGL framebuffer.
+ * vtkSMPTools, the same image for any number of threads); the image and its depth are then
+ * drawn into the OpenGL framebuffer.
  *
  * @sa vtkSurfaceSplatRasterizer vtkSurfelGenerator vtkPointGaussianMapper
  */
@@ -77,6 +85,40 @@ public:
    */
   void SetCutoff(double cutoff);
   double GetCutoff();
+  ///@}
+
+  ///@{
+  /**
+   * Name of the point-data array of per-point opacities in [0, 1]. Default "Opacity".
+   */
+  vtkSetStringMacro(OpacityArrayName);
+  vtkGetStringMacro(OpacityArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * Fragments kept per pixel for translucent inputs. Default 3, as in the paper.
+   */
+  void SetNumberOfLayers(int layers);
+  int GetNumberOfLayers();
+  ///@}
+
+  ///@{
+  /**
+   * Edge antialiasing by coverage. Default on.
+   */
+  void SetEdgeAntialiasing(bool antialiasing);
+  bool GetEdgeAntialiasing();
+  vtkBooleanMacro(EdgeAntialiasing, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Summed kernel weight above which a pixel counts as fully covered, for the default cutoff
+   * (scaled with the cutoff's share of kernel mass for others). Default 0.4, the paper's tau.
+   */
+  void SetCoverageThreshold(double tau);
+  double GetCoverageThreshold();
   ///@}
 
   ///@{
@@ -163,6 +205,7 @@ protected:
 
   double Radius = 1.0;
   char* RadiusArrayName = nullptr;
+  char* OpacityArrayName = nullptr;
   char* TangentAxis0ArrayName = nullptr;
   char* TangentAxis1ArrayName = nullptr;
   int FilterMode = EWA;

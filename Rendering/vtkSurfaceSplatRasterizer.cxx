@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSurfaceSplatRasterizer.h"
 
-#include "SplatSurfelKernel.h"
-
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
 
@@ -24,9 +22,10 @@ enum CullReason
 
 // Rows per band: small enough to balance the threads, large enough that few kernels straddle bands.
 constexpr int BandHeight = 16;
+}
 
 // One surfel after setup, in the single precision the per-pixel loop uses.
-struct ScreenSplat
+struct vtkSurfaceSplatRasterizer::ScreenSplat
 {
   float CenterX, CenterY;
   float ConicXX, ConicXY, ConicYY; // 1/2 M^-1, so that beta = d^T C d
@@ -38,8 +37,21 @@ struct ScreenSplat
   float DepthDenominator[3];
   float Normal[3]; // eye space, facing the viewer
   float Color[3];
+  float Alpha;
 };
-}
+
+// One surface's contributions to a pixel (paper 000, table 1). A merged fragment has been
+// shaded: its Weight is negative and Color holds the premultiplied shaded color.
+struct vtkSurfaceSplatRasterizer::Fragment
+{
+  float Depth; // linear eye depth of the nearest contribution
+  float Weight;
+  float Alpha; // weighted opacity, or the merged opacity once shaded
+  float Color[3];
+  float Normal[3];
+
+  bool Shaded() const { return this->Weight < 0.0f; }
+};
 
 struct vtkSurfaceSplatRasterizer::Internals
 {
@@ -47,6 +59,38 @@ struct vtkSurfaceSplatRasterizer::Internals
   std::vector<vtkIdType> BandOffsets; // per band, into BandSplats
   std::vector<vtkIdType> BandSplats;  // splat indices, band by band, in input order
 };
+
+namespace
+{
+using Fragment = vtkSurfaceSplatRasterizer::Fragment;
+using ScreenSplat = vtkSurfaceSplatRasterizer::ScreenSplat;
+
+void Accumulate(Fragment& f, float z, float w, const ScreenSplat& s)
+{
+  f.Depth = std::min(f.Depth, z);
+  f.Weight += w;
+  f.Alpha += w * s.Alpha;
+  for (int c = 0; c < 3; ++c)
+  {
+    f.Color[c] += w * s.Color[c];
+    f.Normal[c] += w * s.Normal[c];
+  }
+}
+
+Fragment NewFragment(float z, float w, const ScreenSplat& s)
+{
+  Fragment f;
+  f.Depth = z;
+  f.Weight = w;
+  f.Alpha = w * s.Alpha;
+  for (int c = 0; c < 3; ++c)
+  {
+    f.Color[c] = w * s.Color[c];
+    f.Normal[c] = w * s.Normal[c];
+  }
+  return f;
+}
+}
 
 //------------------------------------------------------------------------------
 vtkSurfaceSplatRasterizer::vtkSurfaceSplatRasterizer()
@@ -61,25 +105,89 @@ vtkSurfaceSplatRasterizer::~vtkSurfaceSplatRasterizer()
 }
 
 //------------------------------------------------------------------------------
+float vtkSurfaceSplatRasterizer::FullCoverageWeight() const
+{
+  // tau is the paper's threshold for c = 1; other cutoffs keep a different share 1 - e^-c of
+  // each kernel's unit mass, and the threshold follows it.
+  return static_cast<float>(
+    this->CoverageThreshold * (1.0 - std::exp(-this->Cutoff)) / (1.0 - std::exp(-1.0)));
+}
+
+//------------------------------------------------------------------------------
+glm::vec4 vtkSurfaceSplatRasterizer::ShadeFragment(const Fragment& f, int x, int y) const
+{
+  if (f.Shaded())
+  {
+    return glm::vec4(f.Color[0], f.Color[1], f.Color[2], f.Alpha);
+  }
+  const Frame& frame = this->CurrentFrame;
+  // Eye position of the fragment: from the linear depth to NDC z, then unproject.
+  const glm::dmat4& P = frame.View.EyeToClip;
+  const double zEye = -static_cast<double>(f.Depth);
+  const double zNdc = (P[2][2] * zEye + P[3][2]) / (P[2][3] * zEye + P[3][3]);
+  const glm::dvec4 ndc(2.0 * (x + 0.5) / frame.View.Viewport.x - 1.0,
+    2.0 * (y + 0.5) / frame.View.Viewport.y - 1.0, zNdc, 1.0);
+  const glm::dvec4 eye = frame.ClipToEye * ndc;
+  const glm::vec3 position(glm::dvec3(eye) / eye.w);
+
+  glm::vec3 normal(f.Normal[0], f.Normal[1], f.Normal[2]);
+  const float length = glm::length(normal);
+  normal = length > 0.0f ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
+  const glm::vec3 color = glm::vec3(f.Color[0], f.Color[1], f.Color[2]) / f.Weight;
+  const glm::vec3 shaded = glm::clamp(
+    splat::Shade(*frame.Lights, *frame.Surface, color, position, normal), 0.0f, 1.0f);
+  float alpha = f.Alpha / f.Weight;
+  if (this->EdgeAntialiasing)
+  {
+    // Coverage (paper 000, section 7): summed weights below the full-coverage threshold.
+    alpha *= std::min(1.0f, f.Weight / frame.FullCoverage);
+  }
+  return glm::vec4(shaded * alpha, alpha);
+}
+
+//------------------------------------------------------------------------------
 void vtkSurfaceSplatRasterizer::Render(const Surfels& surfels, const Camera& camera,
   const std::vector<splat::Light>& lights, const splat::Material& material)
 {
-  this->Splat(surfels, camera);
-  this->Resolve(camera, lights, material);
+  this->Splat(surfels, camera, lights, material);
+  this->Resolve();
 }
 
 //------------------------------------------------------------------------------
 void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& camera)
 {
+  splat::Material unlit;
+  unlit.Ambient = 0.0f;
+  unlit.Diffuse = 1.0f;
+  this->Splat(surfels, camera, {}, unlit);
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& camera,
+  const std::vector<splat::Light>& lights, const splat::Material& material)
+{
   const int width = camera.Viewport.x;
   const int height = camera.Viewport.y;
   const std::size_t pixels = static_cast<std::size_t>(std::max(width, 0)) * std::max(height, 0);
-  this->Weights.assign(pixels, 0.0f);
-  this->WeightedColors.assign(3 * pixels, 0.0f);
-  this->WeightedNormals.assign(3 * pixels, 0.0f);
-  this->EyeDepths.assign(pixels, std::numeric_limits<float>::infinity());
+  // NumberOfLayers only where something is translucent. An opaque scene keeps one fragment per
+  // pixel, or two with edge antialiasing: a partly covered edge and the surface it shows.
+  bool translucent = false;
+  for (std::size_t i = 0; surfels.Opacities && i < surfels.Count && !translucent; ++i)
+  {
+    translucent = surfels.Opacities[i] < 1.0f;
+  }
+  this->Layers = translucent ? this->NumberOfLayers : (this->EdgeAntialiasing ? 2 : 1);
+  this->Fragments.resize(pixels * this->Layers);
+  this->FragmentCounts.assign(pixels, 0);
   this->SplattedCount = this->FrustumCulledCount = this->BackfaceCulledCount = 0;
   this->NegligibleCount = this->FragmentCount = 0;
+
+  Frame& frame = this->CurrentFrame;
+  frame.View = camera;
+  frame.ClipToEye = glm::inverse(camera.EyeToClip);
+  frame.Lights = &lights;
+  frame.Surface = &material;
+  frame.FullCoverage = this->FullCoverageWeight();
   if (pixels == 0)
   {
     this->FrustumCulledCount = static_cast<vtkIdType>(surfels.Count);
@@ -88,14 +196,15 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
 
   const glm::dmat4 modelToClip = camera.EyeToClip * camera.ModelToEye;
   const glm::dmat4 clipToModel = glm::inverse(modelToClip);
-  const glm::dmat4 clipToEye = glm::inverse(camera.EyeToClip);
+  const glm::dmat4& clipToEye = frame.ClipToEye;
   const glm::dmat3 normalToEye = glm::transpose(glm::inverse(glm::dmat3(camera.ModelToEye)));
   const glm::dvec2 viewport(width, height);
   const bool perspective = camera.EyeToClip[3][3] == 0.0;
   const double cutoff = this->Cutoff;
   const double depthThreshold = this->DepthThreshold;
   const splat::KernelFilter filter = this->Filter;
-  const bool backfaceCulling = this->BackfaceCulling;
+  // Hidden back faces may only be left out of an opaque surface.
+  const bool cullBackFaces = this->BackfaceCulling && !translucent;
 
   // 1. Setup.
   std::vector<ScreenSplat>& splats = this->Internal->Splats;
@@ -127,7 +236,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         glm::dvec3 normal = glm::normalize(normalToEye * n);
         const glm::dvec3 view = perspective ? eye : glm::dvec3(0.0, 0.0, -1.0);
         const bool backFacing = glm::dot(normal, view) > 0.0;
-        if (backFacing && backfaceCulling)
+        if (backFacing && cullBackFaces)
         {
           s.Culled = BackFacing;
           continue;
@@ -188,6 +297,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           s.Normal[c] = static_cast<float>(normal[c]);
           s.Color[c] = surfels.Colors[3 * i + c];
         }
+        s.Alpha = surfels.Opacities ? surfels.Opacities[i] : 1.0f;
       }
     });
 
@@ -237,6 +347,25 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
 
   // 2. Splatting, band by band.
   const float cutoffF = static_cast<float>(cutoff);
+  // The opaque scene's window depths as linear eye depths, for the per-fragment test.
+  std::vector<float> sceneEyeDepths;
+  if (this->SceneDepths.size() == pixels)
+  {
+    sceneEyeDepths.resize(pixels);
+    const glm::dmat4& C = frame.ClipToEye;
+    std::transform(this->SceneDepths.begin(), this->SceneDepths.end(), sceneEyeDepths.begin(),
+      [&C](float window)
+      {
+        if (!(window < 1.0f))
+        {
+          return std::numeric_limits<float>::infinity();
+        }
+        const double zNdc = 2.0 * window - 1.0;
+        return static_cast<float>(-(C[2][2] * zNdc + C[3][2]) / (C[2][3] * zNdc + C[3][3]));
+      });
+  }
+  const float* sceneDepths = sceneEyeDepths.empty() ? nullptr : sceneEyeDepths.data();
+  const int layers = this->Layers;
   std::vector<vtkIdType> fragments(bands, 0);
   vtkSMPTools::For(0, bands, 1,
     [&](vtkIdType bandBegin, vtkIdType bandEnd)
@@ -256,18 +385,19 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
             const float py = y + 0.5f;
             const float dy = py - s.CenterY;
             // The row's span inside the ellipse: roots of XX dx^2 + XY dy dx + YY dy^2 = cutoff.
-            const float b = s.ConicXY * dy;
-            const float discriminant = b * b - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - cutoffF);
+            const float bq = s.ConicXY * dy;
+            const float discriminant =
+              bq * bq - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - cutoffF);
             if (!(discriminant > 0.0f))
             {
               continue;
             }
             const float root = std::sqrt(discriminant);
             const float inverse = 0.5f / s.ConicXX;
-            const int xBegin =
-              std::max(s.X0, static_cast<int>(std::ceil(s.CenterX + (-b - root) * inverse - 0.5f)));
-            const int xEnd =
-              std::min(s.X1, static_cast<int>(std::floor(s.CenterX + (-b + root) * inverse - 0.5f)));
+            const int xBegin = std::max(
+              s.X0, static_cast<int>(std::ceil(s.CenterX + (-bq - root) * inverse - 0.5f)));
+            const int xEnd = std::min(
+              s.X1, static_cast<int>(std::floor(s.CenterX + (-bq + root) * inverse - 0.5f)));
             const float rowNum = s.DepthNumerator[1] * py + s.DepthNumerator[2];
             const float rowDen = s.DepthDenominator[1] * py + s.DepthDenominator[2];
             std::size_t pixel = static_cast<std::size_t>(y) * width + xBegin;
@@ -280,36 +410,22 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
               {
                 continue;
               }
-              const float z = (s.DepthNumerator[0] * px + rowNum) /
-                (s.DepthDenominator[0] * px + rowDen);
-              float& zPixel = this->EyeDepths[pixel];
-              if (z > zPixel + s.Threshold)
+              const float z =
+                (s.DepthNumerator[0] * px + rowNum) / (s.DepthDenominator[0] * px + rowDen);
+              if (sceneDepths && z > sceneDepths[pixel])
               {
-                continue; // behind the pixel's surface
+                continue; // hidden by opaque geometry already in the scene
               }
               const float w = s.Amplitude * std::exp(-beta);
-              float* color = &this->WeightedColors[3 * pixel];
-              float* normal = &this->WeightedNormals[3 * pixel];
-              if (z < zPixel - s.Threshold)
+              Fragment* pixelFragments = &this->Fragments[pixel * layers];
+              std::uint8_t& count = this->FragmentCounts[pixel];
+              if (!translucent)
               {
-                // A new, nearer surface replaces what the pixel held.
-                zPixel = z;
-                this->Weights[pixel] = w;
-                for (int c = 0; c < 3; ++c)
-                {
-                  color[c] = w * s.Color[c];
-                  normal[c] = w * s.Normal[c];
-                }
+                this->AddOpaque(pixelFragments, count, z, w, s);
               }
               else
               {
-                zPixel = std::min(zPixel, z);
-                this->Weights[pixel] += w;
-                for (int c = 0; c < 3; ++c)
-                {
-                  color[c] += w * s.Color[c];
-                  normal[c] += w * s.Normal[c];
-                }
+                this->AddLayered(pixelFragments, count, x, y, z, w, s);
               }
               ++written;
             }
@@ -325,16 +441,113 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
 }
 
 //------------------------------------------------------------------------------
-void vtkSurfaceSplatRasterizer::Resolve(
-  const Camera& camera, const std::vector<splat::Light>& lights, const splat::Material& material)
+void vtkSurfaceSplatRasterizer::AddOpaque(
+  Fragment* fragments, std::uint8_t& count, float z, float w, const ScreenSplat& s) const
 {
-  const int width = camera.Viewport.x;
-  const int height = camera.Viewport.y;
-  const std::size_t pixels = this->Weights.size();
+  // Fragments are sorted front to back. The contribution joins the surface within its z
+  // threshold, or becomes a new surface; what falls behind the last layer is hidden and dropped.
+  int i = 0;
+  while (i < count && z > fragments[i].Depth + s.Threshold)
+  {
+    ++i;
+  }
+  if (i < count && z >= fragments[i].Depth - s.Threshold)
+  {
+    Accumulate(fragments[i], z, w, s);
+    return;
+  }
+  if (i == this->Layers)
+  {
+    return;
+  }
+  const int kept = std::min<int>(count, this->Layers - 1);
+  std::copy_backward(fragments + i, fragments + kept, fragments + kept + 1);
+  fragments[i] = NewFragment(z, w, s);
+  count = static_cast<std::uint8_t>(kept + 1);
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatRasterizer::AddLayered(
+  Fragment* fragments, std::uint8_t& count, int x, int y, float z, float w, const ScreenSplat& s) const
+{
+  // 1. Accumulate-or-separate: the nearest unshaded fragment within the z threshold takes it.
+  int nearest = -1;
+  float nearestDistance = s.Threshold;
+  for (int i = 0; i < count; ++i)
+  {
+    const float distance = std::abs(fragments[i].Depth - z);
+    if (!fragments[i].Shaded() && distance <= nearestDistance)
+    {
+      nearest = i;
+      nearestDistance = distance;
+    }
+  }
+  if (nearest >= 0)
+  {
+    Accumulate(fragments[nearest], z, w, s);
+    return;
+  }
+  // Fragments stay sorted front to back: insert the new one in place.
+  Fragment candidates[MaximumLayers + 1];
+  int n = 0;
+  const Fragment added = NewFragment(z, w, s);
+  bool inserted = false;
+  for (int i = 0; i < count; ++i)
+  {
+    if (!inserted && z < fragments[i].Depth)
+    {
+      candidates[n++] = added;
+      inserted = true;
+    }
+    candidates[n++] = fragments[i];
+  }
+  if (!inserted)
+  {
+    candidates[n++] = added;
+  }
+  // 2. Insertion into a free layer.
+  if (n <= this->Layers)
+  {
+    std::copy(candidates, candidates + n, fragments);
+    count = static_cast<std::uint8_t>(n);
+    return;
+  }
+  // 3. Merging: the two fragments nearest in depth are shaded and blended front over back
+  //    (eq. 12), which least risks a later surface falling between them.
+  int front = 0;
+  for (int i = 1; i + 1 < n; ++i)
+  {
+    if (candidates[i + 1].Depth - candidates[i].Depth <
+      candidates[front + 1].Depth - candidates[front].Depth)
+    {
+      front = i;
+    }
+  }
+  const glm::vec4 f = this->ShadeFragment(candidates[front], x, y);
+  const glm::vec4 b = this->ShadeFragment(candidates[front + 1], x, y);
+  const glm::vec4 merged = f + b * (1.0f - f.a);
+  Fragment& m = candidates[front];
+  m.Weight = -1.0f;
+  m.Alpha = merged.a;
+  for (int c = 0; c < 3; ++c)
+  {
+    m.Color[c] = merged[c];
+  }
+  std::copy(candidates + front + 2, candidates + n, candidates + front + 1);
+  std::copy(candidates, candidates + n - 1, fragments);
+  count = static_cast<std::uint8_t>(n - 1);
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatRasterizer::Resolve()
+{
+  const int width = this->CurrentFrame.View.Viewport.x;
+  const int height = this->CurrentFrame.View.Viewport.y;
+  const std::size_t pixels = this->FragmentCounts.size();
   this->Colors.assign(4 * pixels, 0);
   this->Depths.assign(pixels, 1.0f);
-  const glm::dmat4& P = camera.EyeToClip;
-  const glm::dmat4 clipToEye = glm::inverse(P);
+  const glm::dmat4& P = this->CurrentFrame.View.EyeToClip;
+  const int layers = this->Layers;
 
   vtkSMPTools::For(0, height,
     [&](vtkIdType rowBegin, vtkIdType rowEnd)
@@ -344,34 +557,27 @@ void vtkSurfaceSplatRasterizer::Resolve(
         for (int x = 0; x < width; ++x)
         {
           const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
-          const float w = this->Weights[pixel];
-          if (!(w > 0.0f))
+          const int count = this->FragmentCounts[pixel];
+          if (count == 0)
           {
             continue;
           }
-          // Eye position of the pixel's surface: from the linear depth to NDC z, then unproject.
-          const double zEye = -static_cast<double>(this->EyeDepths[pixel]);
-          const double zNdc = (P[2][2] * zEye + P[3][2]) / (P[2][3] * zEye + P[3][3]);
-          const glm::dvec4 ndc(2.0 * (x + 0.5) / width - 1.0, 2.0 * (y + 0.5) / height - 1.0,
-            zNdc, 1.0);
-          const glm::dvec4 eye = clipToEye * ndc;
-          const glm::vec3 position(glm::dvec3(eye) / eye.w);
-
-          const float* wn = &this->WeightedNormals[3 * pixel];
-          glm::vec3 normal(wn[0], wn[1], wn[2]);
-          const float length = glm::length(normal);
-          normal = length > 0.0f ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
-          const float* wc = &this->WeightedColors[3 * pixel];
-          const glm::vec3 color = glm::vec3(wc[0], wc[1], wc[2]) / w;
-
-          const glm::vec3 shaded = splat::Shade(lights, material, color, position, normal);
+          // Back-to-front blend of the pixel's fragments (premultiplied colors, eq. 12).
+          const Fragment* fragments = &this->Fragments[pixel * layers];
+          glm::vec4 result(0.0f);
+          for (int i = count - 1; i >= 0; --i)
+          {
+            const glm::vec4 shaded = this->ShadeFragment(fragments[i], x, static_cast<int>(y));
+            result = shaded + result * (1.0f - shaded.a);
+          }
           std::uint8_t* rgba = &this->Colors[4 * pixel];
-          for (int c = 0; c < 3; ++c)
+          for (int c = 0; c < 4; ++c)
           {
             rgba[c] = static_cast<std::uint8_t>(
-              std::lround(255.0f * std::min(std::max(shaded[c], 0.0f), 1.0f)));
+              std::lround(255.0f * std::min(std::max(result[c], 0.0f), 1.0f)));
           }
-          rgba[3] = 255;
+          const double zEye = -static_cast<double>(fragments[0].Depth);
+          const double zNdc = (P[2][2] * zEye + P[3][2]) / (P[2][3] * zEye + P[3][3]);
           this->Depths[pixel] =
             static_cast<float>(std::min(std::max(0.5 * zNdc + 0.5, 0.0), 1.0));
         }
@@ -380,11 +586,28 @@ void vtkSurfaceSplatRasterizer::Resolve(
 }
 
 //------------------------------------------------------------------------------
+std::vector<float> vtkSurfaceSplatRasterizer::GetWeights() const
+{
+  std::vector<float> weights(this->FragmentCounts.size(), 0.0f);
+  for (std::size_t pixel = 0; pixel < weights.size(); ++pixel)
+  {
+    if (this->FragmentCounts[pixel] > 0)
+    {
+      weights[pixel] = this->Fragments[pixel * this->Layers].Weight;
+    }
+  }
+  return weights;
+}
+
+//------------------------------------------------------------------------------
 void vtkSurfaceSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Cutoff: " << this->Cutoff << "\n";
   os << indent << "DepthThreshold: " << this->DepthThreshold << "\n";
+  os << indent << "NumberOfLayers: " << this->NumberOfLayers << "\n";
+  os << indent << "EdgeAntialiasing: " << this->EdgeAntialiasing << "\n";
+  os << indent << "CoverageThreshold: " << this->CoverageThreshold << "\n";
   os << indent << "Filter: " << static_cast<int>(this->Filter) << "\n";
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
   os << indent << "SplattedCount: " << this->SplattedCount << "\n";

@@ -11,11 +11,16 @@
  * 1. Setup, parallel over surfels: the Jacobian, the resampling kernel of eq. (6), its bounding
  *    box, and the depth of its tangent plane as a function of the pixel (SplatSurfelKernel.h).
  * 2. Splatting, parallel over horizontal bands of the image: each band visits the kernels that
- *    overlap it in input order, so the image does not depend on the number of threads. Each
- *    contribution is accumulated into, replaces, or is discarded by the pixel's surface by the
- *    z threshold (a multiple of the surfel's eye-space radius).
- * 3. Resolve: normalization by the summed weights (eq. 9) and deferred shading of the filtered
- *    normal with VTK's lighting model (SplatLighting.h).
+ *    overlap it in input order, so the image does not depend on the number of threads. Opaque
+ *    scenes keep the nearest surface of each pixel (and the one behind it, which a partly
+ *    covered edge shows, with edge antialiasing): a contribution is accumulated into a surface
+ *    within the z threshold (a multiple of the surfel's eye-space radius), inserted in front,
+ *    or dropped behind. Translucent scenes keep up to NumberOfLayers fragments per pixel (section 6):
+ *    accumulate-or-separate, insertion into a free layer, or merging of the two fragments
+ *    nearest in depth, shaded first (eq. 12).
+ * 3. Resolve: normalization by the summed weights (eq. 9), deferred shading of the filtered
+ *    normal with VTK's lighting model (SplatLighting.h), coverage from the summed weights
+ *    multiplied into alpha (edge antialiasing, section 7), and a back-to-front blend.
  *
  * Surfels are not validated here: the caller passes finite data only.
  *
@@ -55,6 +60,39 @@ public:
   vtkSetClampMacro(DepthThreshold, double, 0.0, 1e3);
   vtkGetMacro(DepthThreshold, double);
 
+  /// Most fragments a pixel can hold.
+  static constexpr int MaximumLayers = 8;
+
+  /**
+   * Fragments per pixel for translucent scenes (paper 000, section 6). Default 3. Opaque scenes
+   * (every opacity 1) do not use it: they keep one fragment per pixel, two with edge
+   * antialiasing.
+   */
+  vtkSetClampMacro(NumberOfLayers, int, 1, MaximumLayers);
+  vtkGetMacro(NumberOfLayers, int);
+
+  /**
+   * Edge antialiasing: a pixel's summed kernel weight q below the full-coverage threshold
+   * tau scales its alpha by q / tau (paper 000, section 7). Default on.
+   */
+  vtkSetMacro(EdgeAntialiasing, bool);
+  vtkGetMacro(EdgeAntialiasing, bool);
+  vtkBooleanMacro(EdgeAntialiasing, bool);
+
+  /**
+   * The full-coverage threshold tau for the default cutoff 1. Default 0.4, the paper's value.
+   * For another cutoff c it is scaled by the share of kernel mass inside the cutoff,
+   * (1 - e^-c) / (1 - e^-1).
+   */
+  vtkSetClampMacro(CoverageThreshold, double, 1e-3, 1.0);
+  vtkGetMacro(CoverageThreshold, double);
+
+  /**
+   * Window-space depth in [0, 1] of the opaque scene per pixel (row by row from the bottom);
+   * contributions behind it are dropped. Empty (the default) for none.
+   */
+  void SetSceneDepths(std::vector<float> depths) { this->SceneDepths = std::move(depths); }
+
   /**
    * The screen-space filter: exact EWA (default), circular or unfiltered (paper 000, figure 8).
    */
@@ -81,7 +119,8 @@ public:
 
   /**
    * Surfels as arrays of n entries: positions and tangent axes are 3-vectors in model
-   * coordinates (the axes' lengths are the semi-axes), normals unit 3-vectors, colors RGB in [0,1].
+   * coordinates (the axes' lengths are the semi-axes), normals unit 3-vectors, colors RGB in [0,1],
+   * opacities in [0, 1] (null when all are 1).
    */
   struct Surfels
   {
@@ -90,6 +129,7 @@ public:
     const float* Axes0 = nullptr;
     const float* Axes1 = nullptr;
     const float* Colors = nullptr;
+    const float* Opacities = nullptr;
     std::size_t Count = 0;
   };
 
@@ -101,25 +141,25 @@ public:
     const splat::Material& material);
 
   /**
-   * Steps 1 and 2 only: the unnormalized accumulation buffers, for tests of the filter itself.
+   * Steps 1 and 2 only, unlit, for tests of the filter itself: see GetWeights().
    */
   void Splat(const Surfels& surfels, const Camera& camera);
 
   /**
-   * Per pixel, row by row from the bottom: RGBA (alpha 0 where no splat covers the pixel) and
-   * the window-space depth in [0, 1] of the nearest surface.
+   * Per pixel, row by row from the bottom: premultiplied RGBA (alpha 0 where no splat covers the
+   * pixel) and the window-space depth in [0, 1] of the nearest surface.
    */
   const std::vector<std::uint8_t>& GetColors() const { return this->Colors; }
   const std::vector<float>& GetDepths() const { return this->Depths; }
 
   /**
-   * The accumulation buffers after Splat(): summed kernel weights, weighted colors (3 per pixel),
-   * weighted eye normals (3 per pixel) and the linear eye depth of each pixel's surface.
+   * After Splat(): the summed kernel weights of each pixel's nearest surface, before
+   * normalization.
    */
-  const std::vector<float>& GetWeights() const { return this->Weights; }
-  const std::vector<float>& GetWeightedColors() const { return this->WeightedColors; }
-  const std::vector<float>& GetWeightedNormals() const { return this->WeightedNormals; }
-  const std::vector<float>& GetEyeDepths() const { return this->EyeDepths; }
+  std::vector<float> GetWeights() const;
+
+  struct Fragment;
+  struct ScreenSplat;
 
   ///@{
   /**
@@ -139,11 +179,22 @@ protected:
   vtkSurfaceSplatRasterizer();
   ~vtkSurfaceSplatRasterizer() override;
 
-  void Resolve(const Camera& camera, const std::vector<splat::Light>& lights,
+  void Splat(const Surfels& surfels, const Camera& camera, const std::vector<splat::Light>& lights,
     const splat::Material& material);
+  void AddOpaque(
+    Fragment* fragments, std::uint8_t& count, float z, float w, const ScreenSplat& s) const;
+  void AddLayered(Fragment* fragments, std::uint8_t& count, int x, int y, float z, float w,
+    const ScreenSplat& s) const;
+  /// Shaded premultiplied color and alpha (coverage included) of a fragment at pixel (x, y).
+  glm::vec4 ShadeFragment(const Fragment& f, int x, int y) const;
+  float FullCoverageWeight() const;
+  void Resolve();
 
   double Cutoff = 1.0;
   double DepthThreshold = 1.0;
+  int NumberOfLayers = 3;
+  bool EdgeAntialiasing = true;
+  double CoverageThreshold = 0.4;
   splat::KernelFilter Filter = splat::KernelFilter::EWA;
   bool BackfaceCulling = false;
 
@@ -153,10 +204,20 @@ protected:
   vtkIdType NegligibleCount = 0;
   vtkIdType FragmentCount = 0;
 
-  std::vector<float> Weights;
-  std::vector<float> WeightedColors;
-  std::vector<float> WeightedNormals;
-  std::vector<float> EyeDepths;
+  // What shading a fragment needs, for the frame being drawn.
+  struct Frame
+  {
+    Camera View;
+    glm::dmat4 ClipToEye{ 1.0 };
+    const std::vector<splat::Light>* Lights = nullptr;
+    const splat::Material* Surface = nullptr;
+    float FullCoverage = 1.0f;
+  };
+  Frame CurrentFrame;
+  int Layers = 1; // fragments per pixel in this frame
+  std::vector<Fragment> Fragments;
+  std::vector<std::uint8_t> FragmentCounts;
+  std::vector<float> SceneDepths;
   std::vector<std::uint8_t> Colors;
   std::vector<float> Depths;
 

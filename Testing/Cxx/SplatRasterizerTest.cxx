@@ -21,7 +21,9 @@ namespace
 struct SurfelGrid
 {
   std::vector<double> Positions;
-  std::vector<float> Normals, Axes0, Axes1, Colors;
+  std::vector<float> Normals, Axes0, Axes1, Colors, Opacities;
+
+  SurfelGrid() = default;
 
   SurfelGrid(int nx, int ny, double hx, double hy, double ax, double ay,
     const std::function<glm::vec3(double, double)>& color)
@@ -50,6 +52,32 @@ struct SurfelGrid
   {
   }
 
+  // Keeps the surfels whose position (x, y) satisfies the predicate.
+  void Keep(const std::function<bool(double, double)>& keep)
+  {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < this->Normals.size() / 3; ++i)
+    {
+      if (keep(this->Positions[3 * i], this->Positions[3 * i + 1]))
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          this->Positions[3 * kept + c] = this->Positions[3 * i + c];
+          for (std::vector<float>* v : { &this->Normals, &this->Axes0, &this->Axes1, &this->Colors })
+          {
+            (*v)[3 * kept + c] = (*v)[3 * i + c];
+          }
+        }
+        ++kept;
+      }
+    }
+    this->Positions.resize(3 * kept);
+    for (std::vector<float>* v : { &this->Normals, &this->Axes0, &this->Axes1, &this->Colors })
+    {
+      v->resize(3 * kept);
+    }
+  }
+
   vtkSurfaceSplatRasterizer::Surfels View() const
   {
     vtkSurfaceSplatRasterizer::Surfels s;
@@ -58,8 +86,25 @@ struct SurfelGrid
     s.Axes0 = this->Axes0.data();
     s.Axes1 = this->Axes1.data();
     s.Colors = this->Colors.data();
+    s.Opacities = this->Opacities.empty() ? nullptr : this->Opacities.data();
     s.Count = this->Normals.size() / 3;
     return s;
+  }
+
+  // Appends a copy of the grid moved to height z, with one color and opacity.
+  void AppendLayer(const SurfelGrid& grid, double z, const glm::vec3& color, float opacity)
+  {
+    const std::size_t n = grid.Normals.size() / 3;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      this->Positions.insert(
+        this->Positions.end(), { grid.Positions[3 * i], grid.Positions[3 * i + 1], z });
+      this->Colors.insert(this->Colors.end(), { color.x, color.y, color.z });
+      this->Opacities.push_back(opacity);
+    }
+    this->Normals.insert(this->Normals.end(), grid.Normals.begin(), grid.Normals.end());
+    this->Axes0.insert(this->Axes0.end(), grid.Axes0.begin(), grid.Axes0.end());
+    this->Axes1.insert(this->Axes1.end(), grid.Axes1.begin(), grid.Axes1.end());
   }
 };
 
@@ -324,4 +369,111 @@ TEST(SurfaceSplatRasterizer, SameImageForOneAndTwoThreads)
   EXPECT_TRUE(images[0] == images[1]);
   EXPECT_TRUE(images[0] == images[2]);
   EXPECT_TRUE(depths[0] == depths[1]);
+}
+
+// Two parallel translucent planes blend as eq. (12) says, whichever is splatted first.
+TEST(SurfaceSplatRasterizer, TranslucentPlanesBlendInEitherOrder)
+{
+  const glm::vec3 frontColor(1.0f, 0.2f, 0.0f), backColor(0.0f, 0.4f, 1.0f);
+  const float frontAlpha = 0.5f, backAlpha = 0.6f;
+  const SurfelGrid plane(61, 0.01, glm::vec3(1.0f));
+  // The expected premultiplied result over nothing: c_f a_f + c_b a_b (1 - a_f).
+  const glm::vec3 expected =
+    frontColor * frontAlpha + backColor * backAlpha * (1.0f - frontAlpha);
+  const float expectedAlpha = frontAlpha + backAlpha * (1.0f - frontAlpha);
+
+  for (bool frontFirst : { true, false })
+  {
+    SurfelGrid planes;
+    for (bool front : { frontFirst, !frontFirst })
+    {
+      planes.AppendLayer(plane, front ? 0.1 : 0.0, front ? frontColor : backColor,
+        front ? frontAlpha : backAlpha);
+    }
+    vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+    rasterizer->Render(planes.View(), FrontoParallelCamera(1.0, 64), {}, Unlit());
+    const std::vector<std::uint8_t>& rgba = rasterizer->GetColors();
+    for (int y = 16; y < 48; ++y)
+    {
+      for (int x = 16; x < 48; ++x)
+      {
+        const std::uint8_t* p = &rgba[4 * (static_cast<std::size_t>(y) * 64 + x)];
+        for (int c = 0; c < 3; ++c)
+        {
+          ASSERT_NEAR(p[c] / 255.0, expected[c], 1.5 / 255.0)
+            << (frontFirst ? "front first" : "back first") << ", pixel " << x << " " << y;
+        }
+        ASSERT_NEAR(p[3] / 255.0, expectedAlpha, 1.5 / 255.0);
+      }
+    }
+  }
+}
+
+// More surfaces than layers: the two nearest in depth merge, and the result stays the
+// front-to-back blend when the merged pair is adjacent.
+TEST(SurfaceSplatRasterizer, MergesTheNearestFragmentsWhenLayersRunOut)
+{
+  const SurfelGrid plane(41, 0.01, glm::vec3(1.0f));
+  const double depths[4] = { 0.0, 0.1, 0.12, 0.3 }; // the middle two are nearest
+  const float alpha = 0.4f;
+  const glm::vec3 layerColors[4] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { 0, 0, 1 } };
+  SurfelGrid planes;
+  for (int layer = 3; layer >= 0; --layer) // back to front: the worst order for insertion
+  {
+    planes.AppendLayer(plane, depths[layer], layerColors[layer], alpha);
+  }
+
+  // Front to back: z = 0.3 (blue), 0.12 (blue), 0.1 (green), 0 (red).
+  glm::vec4 expected(0.0f);
+  for (int layer = 3; layer >= 0; --layer)
+  {
+    expected += (1.0f - expected.a) * glm::vec4(layerColors[layer] * alpha, alpha);
+  }
+  vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+  rasterizer->SetNumberOfLayers(3);
+  rasterizer->Render(planes.View(), FrontoParallelCamera(1.0, 64), {}, Unlit());
+  const std::uint8_t* p = &rasterizer->GetColors()[4 * (32 * 64 + 32)];
+  for (int c = 0; c < 4; ++c)
+  {
+    EXPECT_NEAR(p[c] / 255.0, expected[c], 2.0 / 255.0) << "channel " << c;
+  }
+}
+
+// Edge antialiasing: the silhouette of a splatted disk has intermediate alpha, the inside none.
+TEST(SurfaceSplatRasterizer, DiskEdgeHasPartialCoverageOnly)
+{
+  SurfelGrid disk(81, 0.01, glm::vec3(1.0f));
+  disk.Keep([](double x, double y) { return std::hypot(x, y) <= 0.3; });
+  const int size = 200;
+  const double distance = 2.0;
+  const double pixelsPerUnit = PixelsPerUnit(distance, size);
+  for (bool antialiasing : { true, false })
+  {
+    vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+    rasterizer->SetEdgeAntialiasing(antialiasing);
+    rasterizer->Render(disk.View(), FrontoParallelCamera(distance, size), {}, Unlit());
+    const std::vector<std::uint8_t>& rgba = rasterizer->GetColors();
+    int partialInside = 0, partialAtEdge = 0;
+    for (int y = 0; y < size; ++y)
+    {
+      for (int x = 0; x < size; ++x)
+      {
+        const double r = std::hypot(x + 0.5 - 0.5 * size, y + 0.5 - 0.5 * size) / pixelsPerUnit;
+        const std::uint8_t a = rgba[4 * (static_cast<std::size_t>(y) * size + x) + 3];
+        const bool partial = a > 0 && a < 255;
+        partialInside += partial && r < 0.3 - 0.02;
+        partialAtEdge += partial && r >= 0.3 - 0.02;
+      }
+    }
+    EXPECT_EQ(partialInside, 0) << (antialiasing ? "with" : "without") << " antialiasing";
+    if (antialiasing)
+    {
+      // The circumference is ~ 2 pi 0.3 * pixelsPerUnit pixels long.
+      EXPECT_GT(partialAtEdge, 2.0 * M_PI * 0.3 * pixelsPerUnit);
+    }
+    else
+    {
+      EXPECT_EQ(partialAtEdge, 0);
+    }
+  }
 }
