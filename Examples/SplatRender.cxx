@@ -1,0 +1,807 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// splat_render: renders a point cloud or a mesh (.ply, .vtp, .xyz, .off) as EWA surface splats
+// into a PNG and reports the frame time. Without a file it renders the project's demo scenes.
+// Run `splat_render --help` for the options.
+#include "vtkSurfaceSplatMapper.h"
+#include "vtkSurfelGenerator.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkErrorCode.h"
+#include "vtkFloatArray.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkPLYReader.h"
+#include "vtkPNGWriter.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
+#include "vtkSmartPointer.h"
+#include "vtkWindowToImageFilter.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include <vtksys/SystemTools.hxx>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <unistd.h> // mkdtemp
+
+namespace
+{
+using Triple = std::array<double, 3>;
+
+const char* const Usage = R"(Usage: splat_render [OPTIONS] [FILE]
+
+Renders FILE (.ply, .vtp, .xyz or .off; a mesh or a point cloud) as EWA surface splats
+(vtkSurfelGenerator + vtkSurfaceSplatMapper) into a PNG and prints the backend, the number of
+splats, the time per frame and the splats per second. Without FILE, renders the demo scenes
+(the Stanford bunny, or the CGAL armadillo when the bunny is absent, and a colored sphere).
+
+.xyz files hold one point per line: "x y z" or "x y z nx ny nz"; lines starting with # are
+skipped. Points without normals get normals from their neighbors.
+
+Options (a value follows as --name VALUE or --name=VALUE):
+  --output FILE.png       image of FILE to write (default DIR/<name of FILE>.png)
+  --output-dir DIR        folder for the images (default output; output/demo for the demos)
+  --size WxH              image size in pixels (default 800x800)
+  --azimuth DEG           rotate the camera about the view up vector (default 0)
+  --elevation DEG         rotate the camera up over the focal point (default 0)
+  --zoom F                zoom factor, > 1 moves closer (default 1)
+  --view-up x,y,z         camera view up vector (default 0,1,0)
+  --view-direction x,y,z  direction the camera looks along (default 0,0,-1)
+  --backend auto|cpu      rendering backend (default auto; CPU is the only one so far)
+  --radius-scale F        vtkSurfelGenerator RadiusScale: splat radius / point spacing (default 1)
+  --cutoff F              vtkSurfaceSplatMapper Cutoff on the kernel exponent (default 1)
+  --color r,g,b           splat color in [0,1], replaces the data's own colors
+  --background r,g,b      background color in [0,1] (default 0.1,0.1,0.15)
+  --frames N              frames timed after one warm-up frame (default 5)
+  --help                  print this help
+
+Environment: SPLAT_DATA_DIR, the folder holding bunny.ply for the demo scenes
+(default: ../shared/data next to the source tree).
+)";
+
+// Thrown for a bad command line (exit status 2); std::runtime_error for bad data (status 1).
+struct UsageError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+struct Options
+{
+  std::string Input;
+  std::optional<std::string> Output;
+  std::optional<std::string> OutputDir;
+  int Width = 800;
+  int Height = 800;
+  double Azimuth = 0.0;
+  double Elevation = 0.0;
+  double Zoom = 1.0;
+  std::optional<Triple> ViewUp;
+  std::optional<Triple> ViewDirection;
+  double RadiusScale = 1.0;
+  double Cutoff = 1.0;
+  std::optional<Triple> Color;
+  Triple Background = { 0.1, 0.1, 0.15 };
+  int Frames = 5;
+};
+
+double ParseNumber(const std::string& option, const std::string& text)
+{
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value))
+  {
+    throw UsageError(option + ": '" + text + "' is not a number");
+  }
+  return value;
+}
+
+double ParsePositive(const std::string& option, const std::string& text)
+{
+  const double value = ParseNumber(option, text);
+  if (!(value > 0.0))
+  {
+    throw UsageError(option + ": expected a positive number, got '" + text + "'");
+  }
+  return value;
+}
+
+int ParseCount(const std::string& option, const std::string& text, int low, int high)
+{
+  const double value = ParseNumber(option, text);
+  if (value != std::floor(value) || value < low || value > high)
+  {
+    throw UsageError(option + ": expected a whole number from " + std::to_string(low) + " to " +
+      std::to_string(high) + ", got '" + text + "'");
+  }
+  return static_cast<int>(value);
+}
+
+Triple ParseTriple(const std::string& option, const std::string& text)
+{
+  std::vector<double> values;
+  std::istringstream fields(text);
+  std::string field;
+  while (std::getline(fields, field, ','))
+  {
+    values.push_back(ParseNumber(option, field));
+  }
+  if (values.size() != 3)
+  {
+    throw UsageError(option + ": expected three comma-separated numbers, got '" + text + "'");
+  }
+  return { values[0], values[1], values[2] };
+}
+
+Triple ParseColor(const std::string& option, const std::string& text)
+{
+  const Triple color = ParseTriple(option, text);
+  for (double c : color)
+  {
+    if (c < 0.0 || c > 1.0)
+    {
+      throw UsageError(option + ": color components must lie in [0,1], got '" + text + "'");
+    }
+  }
+  return color;
+}
+
+Triple ParseDirection(const std::string& option, const std::string& text)
+{
+  Triple direction = ParseTriple(option, text);
+  if (vtkMath::Normalize(direction.data()) == 0.0)
+  {
+    throw UsageError(option + ": the vector must not be zero");
+  }
+  return direction;
+}
+
+bool HasExtension(const std::string& path, const std::string& extension)
+{
+  return vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path)) ==
+    extension;
+}
+
+// Long GNU-style options: "--name VALUE" or "--name=VALUE"; one optional input file.
+Options ParseCommandLine(int argc, char* argv[])
+{
+  Options options;
+  const std::map<std::string, std::function<void(const std::string&, const std::string&)>>
+    handlers = {
+      { "--output",
+        [&](const std::string& name, const std::string& value)
+        {
+          if (!HasExtension(value, ".png"))
+          {
+            throw UsageError(
+              name + ": the image is written as PNG, name it *.png (got '" + value + "')");
+          }
+          options.Output = value;
+        } },
+      { "--output-dir",
+        [&](const std::string&, const std::string& value) { options.OutputDir = value; } },
+      { "--size",
+        [&](const std::string& name, const std::string& value)
+        {
+          const auto x = value.find('x');
+          if (x == std::string::npos)
+          {
+            throw UsageError(name + ": expected WxH, e.g. 800x600, got '" + value + "'");
+          }
+          options.Width = ParseCount(name, value.substr(0, x), 1, 16384);
+          options.Height = ParseCount(name, value.substr(x + 1), 1, 16384);
+        } },
+      { "--azimuth",
+        [&](const std::string& name, const std::string& value)
+        { options.Azimuth = ParseNumber(name, value); } },
+      { "--elevation",
+        [&](const std::string& name, const std::string& value)
+        { options.Elevation = ParseNumber(name, value); } },
+      { "--zoom",
+        [&](const std::string& name, const std::string& value)
+        { options.Zoom = ParsePositive(name, value); } },
+      { "--view-up",
+        [&](const std::string& name, const std::string& value)
+        { options.ViewUp = ParseDirection(name, value); } },
+      { "--view-direction",
+        [&](const std::string& name, const std::string& value)
+        { options.ViewDirection = ParseDirection(name, value); } },
+      { "--backend",
+        [&](const std::string& name, const std::string& value)
+        {
+          // The OpenGL backend is not written yet: "auto" resolves to the CPU rasterizer.
+          const std::string backend = vtksys::SystemTools::LowerCase(value);
+          if (backend != "auto" && backend != "cpu")
+          {
+            throw UsageError(name + ": unknown backend '" + value +
+              "'; available: auto, cpu (the OpenGL backend is not implemented yet)");
+          }
+        } },
+      { "--radius-scale",
+        [&](const std::string& name, const std::string& value)
+        { options.RadiusScale = ParsePositive(name, value); } },
+      { "--cutoff",
+        [&](const std::string& name, const std::string& value)
+        { options.Cutoff = ParsePositive(name, value); } },
+      { "--color",
+        [&](const std::string& name, const std::string& value)
+        { options.Color = ParseColor(name, value); } },
+      { "--background",
+        [&](const std::string& name, const std::string& value)
+        { options.Background = ParseColor(name, value); } },
+      { "--frames",
+        [&](const std::string& name, const std::string& value)
+        { options.Frames = ParseCount(name, value, 1, 100000); } },
+    };
+
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string argument = argv[i];
+    if (argument == "--help")
+    {
+      std::cout << Usage;
+      std::exit(EXIT_SUCCESS);
+    }
+    if (argument.size() < 2 || argument[0] != '-')
+    {
+      if (!options.Input.empty())
+      {
+        throw UsageError("one input file only, got '" + options.Input + "' and '" + argument + "'");
+      }
+      options.Input = argument;
+      continue;
+    }
+    const auto equals = argument.find('=');
+    const std::string name = argument.substr(0, equals);
+    const auto handler = handlers.find(name);
+    if (handler == handlers.end())
+    {
+      throw UsageError("unknown option '" + name + "' (see --help)");
+    }
+    if (equals == std::string::npos && i + 1 == argc)
+    {
+      throw UsageError(name + " needs a value (see --help)");
+    }
+    handler->second(name, equals == std::string::npos ? argv[++i] : argument.substr(equals + 1));
+  }
+
+  if (options.Input.empty() && options.Output)
+  {
+    throw UsageError("--output names the image of an input file; the demo scenes (no input "
+                     "file) go to --output-dir");
+  }
+  // The view up must not be parallel to the view direction; only the default one is replaced.
+  const Triple direction = options.ViewDirection.value_or(Triple{ 0.0, 0.0, -1.0 });
+  const Triple up = options.ViewUp.value_or(Triple{ 0.0, 1.0, 0.0 });
+  Triple side;
+  vtkMath::Cross(direction.data(), up.data(), side.data());
+  if (vtkMath::Norm(side.data()) < 1e-6)
+  {
+    if (options.ViewUp)
+    {
+      throw UsageError("--view-up must not be parallel to the view direction");
+    }
+    options.ViewUp = Triple{ 0.0, 0.0, 1.0 };
+  }
+  return options;
+}
+
+// Text point cloud: "x y z" or "x y z nx ny nz" per line, the same on every line; lines
+// starting with # are comments.
+vtkSmartPointer<vtkPolyData> ReadXYZ(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    throw std::runtime_error("cannot open '" + path + "'");
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  std::size_t columns = 0;
+  std::string line;
+  for (int lineNumber = 1; std::getline(in, line); ++lineNumber)
+  {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#')
+    {
+      continue;
+    }
+    std::istringstream fields(line);
+    std::vector<double> values;
+    double value;
+    while (fields >> value)
+    {
+      values.push_back(value);
+    }
+    const std::string where = path + ":" + std::to_string(lineNumber) + ": ";
+    if (!fields.eof() || (values.size() != 3 && values.size() != 6))
+    {
+      throw std::runtime_error(where + "expected 'x y z' or 'x y z nx ny nz', got '" + line + "'");
+    }
+    if (columns != 0 && values.size() != columns)
+    {
+      throw std::runtime_error(where + std::to_string(values.size()) +
+        " numbers where earlier lines have " + std::to_string(columns));
+    }
+    columns = values.size();
+    points->InsertNextPoint(values.data());
+    if (columns == 6)
+    {
+      normals->InsertNextTuple(values.data() + 3);
+    }
+  }
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  cloud->SetPoints(points);
+  if (columns == 6)
+  {
+    cloud->GetPointData()->SetNormals(normals);
+  }
+  return cloud;
+}
+
+// Object File Format mesh: "OFF", the counts "vertices faces edges", one "x y z" line per
+// vertex, one "n i_0 ... i_n-1" line per face; # starts a comment. Values after those (colors)
+// are ignored. VTK 9.1 has no OFF reader.
+vtkSmartPointer<vtkPolyData> ReadOFF(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    throw std::runtime_error("cannot open '" + path + "'");
+  }
+  std::string line;
+  int lineNumber = 0;
+  std::istringstream fields;
+  // Loads the next line holding data into `fields`.
+  auto nextLine = [&]()
+  {
+    while (std::getline(in, line))
+    {
+      ++lineNumber;
+      line.erase(std::min(line.find('#'), line.size()));
+      if (line.find_first_not_of(" \t\r") != std::string::npos)
+      {
+        fields.clear();
+        fields.str(line);
+        return;
+      }
+    }
+    throw std::runtime_error(path + ": the file ends early");
+  };
+  auto fail = [&](const std::string& what)
+  { return std::runtime_error(path + ":" + std::to_string(lineNumber) + ": " + what); };
+
+  nextLine();
+  std::string keyword;
+  fields >> keyword;
+  if (keyword != "OFF")
+  {
+    throw fail("not an OFF file (the first line must be OFF)");
+  }
+  long long vertexCount, faceCount;
+  if (!(fields >> vertexCount)) // the counts may follow the keyword on the same line
+  {
+    nextLine();
+    fields >> vertexCount;
+  }
+  if (!(fields >> faceCount) || vertexCount <= 0 || faceCount < 0)
+  {
+    throw fail("expected the counts 'vertices faces edges'");
+  }
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->Allocate(vertexCount);
+  for (long long i = 0; i < vertexCount; ++i)
+  {
+    nextLine();
+    double p[3];
+    if (!(fields >> p[0] >> p[1] >> p[2]))
+    {
+      throw fail("expected a vertex 'x y z'");
+    }
+    points->InsertNextPoint(p);
+  }
+  vtkNew<vtkCellArray> polys;
+  std::vector<vtkIdType> ids;
+  for (long long i = 0; i < faceCount; ++i)
+  {
+    nextLine();
+    long long n;
+    if (!(fields >> n) || n < 3)
+    {
+      throw fail("expected a face 'n i_0 ... i_n-1' with n >= 3");
+    }
+    ids.resize(n);
+    for (auto& id : ids)
+    {
+      long long index;
+      if (!(fields >> index) || index < 0 || index >= vertexCount)
+      {
+        throw fail("face vertex index missing or out of range");
+      }
+      id = static_cast<vtkIdType>(index);
+    }
+    polys->InsertNextCell(static_cast<vtkIdType>(n), ids.data());
+  }
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->SetPoints(points);
+  mesh->SetPolys(polys);
+  return mesh;
+}
+
+// Reads a mesh or point cloud by its extension; throws with a readable message when it cannot.
+vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
+{
+  if (!vtksys::SystemTools::FileExists(path, true))
+  {
+    throw std::runtime_error("no such file: '" + path + "'");
+  }
+  vtkSmartPointer<vtkPolyData> data;
+  if (HasExtension(path, ".ply"))
+  {
+    if (!vtkPLYReader::CanReadFile(path.c_str()))
+    {
+      throw std::runtime_error("'" + path + "' is not a readable PLY file");
+    }
+    vtkNew<vtkPLYReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    data = reader->GetOutput();
+  }
+  else if (HasExtension(path, ".vtp"))
+  {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    if (!reader->CanReadFile(path.c_str()))
+    {
+      throw std::runtime_error("'" + path + "' is not a VTK XML PolyData file");
+    }
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    if (reader->GetErrorCode() != vtkErrorCode::NoError)
+    {
+      throw std::runtime_error("reading '" + path + "' failed");
+    }
+    data = reader->GetOutput();
+  }
+  else if (HasExtension(path, ".xyz"))
+  {
+    data = ReadXYZ(path);
+  }
+  else if (HasExtension(path, ".off"))
+  {
+    data = ReadOFF(path);
+  }
+  else
+  {
+    throw std::runtime_error(
+      "'" + path + "': unknown file type; splat_render reads .ply, .vtp, .xyz and .off");
+  }
+  if (data->GetNumberOfPoints() == 0)
+  {
+    throw std::runtime_error("'" + path + "' holds no points");
+  }
+  return data;
+}
+
+// A mapper drawing the surfels vtkSurfelGenerator makes from `data`.
+vtkSmartPointer<vtkSurfaceSplatMapper> SplatMapper(vtkPolyData* data, const Options& options)
+{
+  vtkNew<vtkSurfelGenerator> surfels;
+  surfels->SetInputData(data);
+  surfels->SetRadiusScale(options.RadiusScale);
+  surfels->Update();
+  if (surfels->GetOutput()->GetNumberOfPoints() == 0)
+  {
+    throw std::runtime_error("vtkSurfelGenerator made no surfels from the input");
+  }
+  auto mapper = vtkSmartPointer<vtkSurfaceSplatMapper>::New();
+  mapper->SetInputConnection(surfels->GetOutputPort());
+  mapper->SetCutoff(options.Cutoff);
+  return mapper;
+}
+
+double Median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// `facing` turns the default view about the view up for scenes modeled facing away from +z.
+void SetUpCamera(vtkRenderer* renderer, const Options& options, double facing)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  if (options.ViewDirection)
+  {
+    // ResetCamera keeps this direction of projection and moves the camera back to fit the scene.
+    const Triple& d = *options.ViewDirection;
+    camera->SetFocalPoint(0.0, 0.0, 0.0);
+    camera->SetPosition(-d[0], -d[1], -d[2]);
+  }
+  if (options.ViewUp)
+  {
+    camera->SetViewUp(options.ViewUp->data());
+  }
+  renderer->ResetCamera();
+  camera->Azimuth(facing + options.Azimuth);
+  camera->Elevation(options.Elevation);
+  camera->OrthogonalizeViewUp();
+  camera->Zoom(options.Zoom);
+  renderer->ResetCameraClippingRange();
+}
+
+void MakeFolderOf(const std::string& path)
+{
+  const std::string folder = vtksys::SystemTools::GetFilenamePath(path);
+  if (!folder.empty() && !vtksys::SystemTools::MakeDirectory(folder))
+  {
+    throw std::runtime_error("cannot create the folder '" + folder + "'");
+  }
+}
+
+void WritePNG(vtkRenderWindow* window, const std::string& path)
+{
+  vtkNew<vtkWindowToImageFilter> image;
+  image->SetInput(window);
+  image->SetInputBufferTypeToRGB();
+  image->ReadFrontBufferOff();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputConnection(image->GetOutputPort());
+  writer->Write();
+  if (writer->GetErrorCode() != vtkErrorCode::NoError)
+  {
+    throw std::runtime_error("cannot write '" + path + "'");
+  }
+}
+
+// One offscreen window and renderer for every scene: each window opens its own X display
+// connection, and an X server (Xvfb) that resets when its last client disconnects can refuse
+// the next window's connection.
+vtkSmartPointer<vtkRenderWindow> MakeWindow(const Options& options)
+{
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(options.Background.data());
+  auto window = vtkSmartPointer<vtkRenderWindow>::New();
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(options.Width, options.Height);
+  window->AddRenderer(renderer);
+  return window;
+}
+
+// Renders one scene: a warm-up frame, then options.Frames timed frames; prints the figures and
+// writes the last frame to `png`.
+void RenderScene(vtkRenderWindow* window, vtkSurfaceSplatMapper* mapper, const Options& options,
+  const std::string& png, double facing = 0.0)
+{
+  MakeFolderOf(png); // before the work, so that a bad path fails early
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  Triple color = options.Color.value_or(Triple{ 0.85, 0.75, 0.6 });
+  actor->GetProperty()->SetColor(color.data());
+  actor->GetProperty()->SetSpecular(0.2);
+  actor->GetProperty()->SetSpecularPower(20.0);
+  if (options.Color)
+  {
+    mapper->ScalarVisibilityOff();
+  }
+
+  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
+  renderer->RemoveAllViewProps(); // the previous scene, with its graphics resources
+  renderer->AddActor(actor);
+  vtkNew<vtkCamera> camera;
+  renderer->SetActiveCamera(camera);
+  SetUpCamera(renderer, options, facing);
+
+  // The warm-up frame builds the surfel arrays and the OpenGL resources.
+  window->Render();
+  if (mapper->GetNumberOfSplats() == 0)
+  {
+    throw std::runtime_error("nothing to draw: no point has a valid position, normal and radius");
+  }
+  std::vector<double> frameMs, mapperMs;
+  for (int frame = 0; frame < options.Frames; ++frame)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    // OpenGL runs asynchronously: the frame is done when the GL queue is.
+    window->WaitForCompletion();
+    frameMs.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    mapperMs.push_back(mapper->GetLastRenderTimeInMilliseconds());
+  }
+  const double ms = Median(frameMs);
+  const vtkIdType splats = mapper->GetNumberOfSplats();
+
+  std::cout << std::fixed << std::setprecision(2) << "  backend:       CPU\n"
+            << "  splats:        " << splats << " (" << mapper->GetNumberOfRenderedSplats()
+            << " drawn, " << mapper->GetNumberOfCulledSplats() << " culled, "
+            << mapper->GetNumberOfSkippedPoints() << " invalid points skipped)\n"
+            << "  ms per frame:  " << ms << " (median of " << options.Frames
+            << " frames, render window); mapper " << Median(mapperMs)
+            << " (GetLastRenderTimeInMilliseconds)\n"
+            << "  splats per s:  " << std::setprecision(0) << splats / (ms * 1e-3) << "\n";
+  WritePNG(window, png);
+  std::cout << "  image:         " << png << " (" << options.Width << "x" << options.Height << ")"
+            << std::endl;
+}
+
+// bunny.ply from SPLAT_DATA_DIR, or from ../shared/data next to the source tree.
+std::string BunnyFile()
+{
+  std::string folder;
+  if (!vtksys::SystemTools::GetEnv("SPLAT_DATA_DIR", folder) || folder.empty())
+  {
+    folder = vtksys::SystemTools::CollapseFullPath(SPLAT_SOURCE_DIR "/../shared/data");
+  }
+  return folder + "/bunny.ply";
+}
+
+// Debian's libcgal-demo ships its sample data as one tarball: only the armadillo is unpacked,
+// into a temporary folder removed after reading.
+const char* const CgalData = "/usr/share/doc/libcgal-dev/data.tar.gz";
+
+vtkSmartPointer<vtkPolyData> ReadCgalArmadillo()
+{
+  const std::string member = "data/meshes/armadillo.off";
+  std::string folder;
+  if (!vtksys::SystemTools::GetEnv("TMPDIR", folder) || folder.empty())
+  {
+    folder = "/tmp";
+  }
+  std::string pattern = folder + "/splat_render.XXXXXX";
+  if (!mkdtemp(pattern.data()))
+  {
+    throw std::runtime_error("cannot create a temporary folder in " + folder);
+  }
+  struct RemoveOnExit
+  {
+    std::string Path;
+    ~RemoveOnExit() { vtksys::SystemTools::RemoveADirectory(this->Path); }
+  } temporary{ pattern };
+
+  const std::string command =
+    "tar -xzf '" + std::string(CgalData) + "' -C '" + temporary.Path + "' " + member;
+  if (std::system(command.c_str()) != 0)
+  {
+    throw std::runtime_error("'" + command + "' failed");
+  }
+  return ReadOFF(temporary.Path + "/" + member);
+}
+
+// A sphere of points with radial normals, colored by a smooth scalar field through a
+// cool-to-warm transfer function: shows scalar coloring through the mapper's lookup table.
+const vtkIdType SpherePoints = 200000;
+
+vtkSmartPointer<vtkSurfaceSplatMapper> ColoredSphere(const Options& options)
+{
+  const vtkIdType n = SpherePoints;
+  vtkNew<vtkPoints> points;
+  points->SetNumberOfPoints(n);
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(n);
+  vtkNew<vtkFloatArray> wave;
+  wave->SetName("Wave");
+  wave->SetNumberOfTuples(n);
+  const double golden = vtkMath::Pi() * (3.0 - std::sqrt(5.0));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    // Fibonacci lattice: uniform sampling of the unit sphere.
+    const double z = 1.0 - (2.0 * i + 1.0) / n;
+    const double r = std::sqrt(1.0 - z * z);
+    const double longitude = golden * i;
+    const double p[3] = { r * std::cos(longitude), r * std::sin(longitude), z };
+    points->SetPoint(i, p);
+    normals->SetTuple(i, p);
+    wave->SetValue(i, static_cast<float>(std::sin(6.0 * p[0]) * std::cos(4.0 * p[1]) + p[2]));
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(points);
+  cloud->GetPointData()->SetNormals(normals);
+  cloud->GetPointData()->AddArray(wave);
+
+  auto mapper = SplatMapper(cloud, options);
+  const double* range = wave->GetRange();
+  vtkNew<vtkColorTransferFunction> coolToWarm;
+  coolToWarm->SetColorSpaceToDiverging();
+  coolToWarm->AddRGBPoint(range[0], 0.231, 0.299, 0.754);
+  coolToWarm->AddRGBPoint(range[1], 0.706, 0.016, 0.150);
+  mapper->SetLookupTable(coolToWarm);
+  mapper->SetScalarModeToUsePointFieldData();
+  mapper->SelectColorArray("Wave");
+  mapper->SetScalarRange(range);
+  mapper->ScalarVisibilityOn();
+  return mapper;
+}
+
+int RenderDemoScenes(const Options& options)
+{
+  const std::string folder = options.OutputDir.value_or("output/demo");
+  vtkSmartPointer<vtkRenderWindow> window = MakeWindow(options);
+  int images = 0;
+  const std::string bunny = BunnyFile();
+  if (vtksys::SystemTools::FileExists(bunny, true))
+  {
+    std::cout << "bunny: " << bunny << std::endl;
+    RenderScene(window, SplatMapper(ReadPolyData(bunny), options), options, folder + "/bunny.png");
+    ++images;
+  }
+  else if (vtksys::SystemTools::FileExists(CgalData, true))
+  {
+    std::cout << "armadillo: " << bunny << " is absent; using armadillo.off from " << CgalData
+              << std::endl;
+    RenderScene(
+      window, SplatMapper(ReadCgalArmadillo(), options), options, folder + "/armadillo.png", 180.0);
+    ++images;
+  }
+  else
+  {
+    std::cout << "mesh scene skipped: neither " << bunny << " nor " << CgalData
+              << " (Debian package libcgal-demo) is present\n";
+  }
+  std::cout << "sphere: " << SpherePoints << " points colored by the scalar 'Wave'" << std::endl;
+  RenderScene(window, ColoredSphere(options), options, folder + "/sphere.png");
+  ++images;
+  std::cout << "Wrote " << images << " images to " << vtksys::SystemTools::CollapseFullPath(folder)
+            << "\n";
+  return EXIT_SUCCESS;
+}
+
+int RenderFile(const Options& options)
+{
+  const std::string png = options.Output.value_or(options.OutputDir.value_or("output") + "/" +
+    vtksys::SystemTools::GetFilenameWithoutLastExtension(options.Input) + ".png");
+  vtkSmartPointer<vtkPolyData> data = ReadPolyData(options.Input);
+  std::cout << options.Input << ": " << data->GetNumberOfPoints() << " points, "
+            << data->GetNumberOfPolys() << " polygons" << std::endl;
+  RenderScene(MakeWindow(options), SplatMapper(data, options), options, png);
+  return EXIT_SUCCESS;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  try
+  {
+    const Options options = ParseCommandLine(argc, argv);
+    return options.Input.empty() ? RenderDemoScenes(options) : RenderFile(options);
+  }
+  catch (const UsageError& e)
+  {
+    std::cerr << "splat_render: " << e.what() << "\n";
+    return 2;
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "splat_render: error: " << e.what() << "\n";
+    return EXIT_FAILURE;
+  }
+}
