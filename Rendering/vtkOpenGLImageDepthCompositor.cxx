@@ -28,6 +28,8 @@ void main()
     discard;
   }
   gl_FragData[0] = color;
+  // The opacity target of VTK's order-independent translucent pass (ignored elsewhere).
+  gl_FragData[1] = vec4(color.a);
   gl_FragDepth = texture(splatDepth, texCoord).r;
 }
 )";
@@ -41,7 +43,7 @@ vtkOpenGLImageDepthCompositor::~vtkOpenGLImageDepthCompositor() = default;
 
 //------------------------------------------------------------------------------
 void vtkOpenGLImageDepthCompositor::Draw(vtkRenderer* renderer, int width, int height,
-  const std::uint8_t* rgba, const float* depth, bool writeDepth)
+  const std::uint8_t* rgba, const float* depth, Blending blending)
 {
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
   if (!window || width <= 0 || height <= 0)
@@ -83,9 +85,13 @@ void vtkOpenGLImageDepthCompositor::Draw(vtkRenderer* renderer, int width, int h
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
   state->vtkglEnable(GL_DEPTH_TEST);
   state->vtkglEnable(GL_BLEND);
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  if (blending != Blending::OrderIndependent)
+  {
+    state->vtkglBlendFuncSeparate(
+      GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  }
   state->vtkglDepthFunc(GL_LEQUAL);
-  state->vtkglDepthMask(writeDepth ? GL_TRUE : GL_FALSE);
+  state->vtkglDepthMask(blending == Blending::Opaque ? GL_TRUE : GL_FALSE);
 
   this->ColorTexture->Activate();
   this->DepthTexture->Activate();

@@ -34,13 +34,21 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /**
+   * How the image joins the framebuffer.
+   */
+  enum class Blending
+  {
+    Opaque,          ///< premultiplied "over", writes depth
+    Translucent,     ///< premultiplied "over", depth-tested only, so later geometry shows through
+    OrderIndependent ///< inside VTK's order-independent translucent pass, which sets the blending
+  };
+
+  /**
    * Draws width x height pixels (rows from the bottom): premultiplied RGBA bytes and
-   * window-space depth in [0, 1]. The size must be the renderer's viewport size. Translucent
-   * images are depth-tested without writing depth, so that what is drawn later behind them
-   * still shows through.
+   * window-space depth in [0, 1]. The size must be the renderer's viewport size.
    */
   void Draw(vtkRenderer* renderer, int width, int height, const std::uint8_t* rgba,
-    const float* depth, bool writeDepth);
+    const float* depth, Blending blending);
 
   /**
    * The window-space depth of the renderer's viewport as drawn so far, rows from the bottom.

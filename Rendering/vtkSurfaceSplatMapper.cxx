@@ -9,11 +9,15 @@
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderPass.h"
+#include "vtkOrderIndependentTranslucentPass.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -129,6 +133,26 @@ splat::Material MaterialOf(vtkProperty* property, bool colorsFromScalars)
     glm::vec3(specularColor[0], specularColor[1], specularColor[2]);
   m.SpecularPower = static_cast<float>(property->GetSpecularPower());
   return m;
+}
+
+// Whether the actor is being drawn by VTK's order-independent translucent pass.
+bool InOrderIndependentPass(vtkActor* actor)
+{
+  vtkInformation* keys = actor->GetPropertyKeys();
+  if (!keys || !keys->Has(vtkOpenGLRenderPass::RenderPasses()))
+  {
+    return false;
+  }
+  const int count = keys->Length(vtkOpenGLRenderPass::RenderPasses());
+  for (int i = 0; i < count; ++i)
+  {
+    if (vtkOrderIndependentTranslucentPass::SafeDownCast(
+          keys->Get(vtkOpenGLRenderPass::RenderPasses(), i)))
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 bool IsFinite(const double* v, int n)
@@ -482,8 +506,12 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
   this->Rasterizer->SetSceneDepths(std::move(sceneDepths));
   this->Rasterizer->Render(
     this->Surfels->View(), view, lights, MaterialOf(property, this->Surfels->ColorsFromScalars));
+  using Blending = vtkOpenGLImageDepthCompositor::Blending;
+  const Blending blending = !translucent ? Blending::Opaque
+    : InOrderIndependentPass(actor)      ? Blending::OrderIndependent
+                                         : Blending::Translucent;
   this->Compositor->Draw(ren, width, height, this->Rasterizer->GetColors().data(),
-    this->Rasterizer->GetDepths().data(), !translucent);
+    this->Rasterizer->GetDepths().data(), blending);
 
   this->LastRenderTimeInMilliseconds =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -15,6 +15,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <sys/stat.h>
@@ -88,9 +89,10 @@ inline vtkSmartPointer<vtkPolyData> FibonacciSphere(vtkIdType n, double radius)
   return cloud;
 }
 
-/// A regular nx x ny grid of surfels with spacing h in the plane z = slope * x, centered at the
-/// origin, normals perpendicular to that plane and radius h.
-inline vtkSmartPointer<vtkPolyData> SurfelGrid(int nx, int ny, double h, double slope = 0.0)
+/// A regular nu x nv grid of surfels centered at `center` with step vectors u and v (their
+/// lengths are the spacings), normals along u x v and the radius of the larger spacing.
+inline vtkSmartPointer<vtkPolyData> SurfelPlane(
+  const double center[3], const double u[3], const double v[3], int nu, int nv)
 {
   vtkNew<vtkPoints> points;
   vtkNew<vtkFloatArray> normals;
@@ -98,24 +100,44 @@ inline vtkSmartPointer<vtkPolyData> SurfelGrid(int nx, int ny, double h, double 
   normals->SetNumberOfComponents(3);
   vtkNew<vtkFloatArray> radii;
   radii->SetName("Radius");
-  double normal[3] = { -slope, 0.0, 1.0 };
+  double normal[3];
+  vtkMath::Cross(u, v, normal);
   vtkMath::Normalize(normal);
-  for (int j = 0; j < ny; ++j)
+  const float radius = static_cast<float>(std::max(vtkMath::Norm(u), vtkMath::Norm(v)));
+  for (int j = 0; j < nv; ++j)
   {
-    for (int i = 0; i < nx; ++i)
+    for (int i = 0; i < nu; ++i)
     {
-      const double x = (i - 0.5 * (nx - 1)) * h;
-      const double y = (j - 0.5 * (ny - 1)) * h;
-      points->InsertNextPoint(x, y, slope * x);
+      const double a = i - 0.5 * (nu - 1);
+      const double b = j - 0.5 * (nv - 1);
+      points->InsertNextPoint(center[0] + a * u[0] + b * v[0], center[1] + a * u[1] + b * v[1],
+        center[2] + a * u[2] + b * v[2]);
       normals->InsertNextTuple(normal);
-      radii->InsertNextValue(static_cast<float>(h));
+      radii->InsertNextValue(radius);
     }
   }
-  auto grid = vtkSmartPointer<vtkPolyData>::New();
-  grid->SetPoints(points);
-  grid->GetPointData()->SetNormals(normals);
-  grid->GetPointData()->AddArray(radii);
-  return grid;
+  auto plane = vtkSmartPointer<vtkPolyData>::New();
+  plane->SetPoints(points);
+  plane->GetPointData()->SetNormals(normals);
+  plane->GetPointData()->AddArray(radii);
+  return plane;
+}
+
+/// Adds constant RGB colors ("Colors", unsigned char) and opacities ("Opacity") to a point set.
+inline void Paint(vtkPolyData* data, const double rgb[3], double opacity)
+{
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(3);
+  vtkNew<vtkFloatArray> opacities;
+  opacities->SetName("Opacity");
+  for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+  {
+    colors->InsertNextTuple3(255.0 * rgb[0], 255.0 * rgb[1], 255.0 * rgb[2]);
+    opacities->InsertNextValue(static_cast<float>(opacity));
+  }
+  data->GetPointData()->SetScalars(colors);
+  data->GetPointData()->AddArray(opacities);
 }
 
 /// The value following `flag` on the command line, or "".

@@ -29,7 +29,10 @@ vtkSmartPointer<vtkActor> FlatActor(vtkMapper* mapper, double r, double g, doubl
 int CountWrongPixels(bool splatsFirst)
 {
   vtkNew<vtkSurfaceSplatMapper> splatMapper;
-  splatMapper->SetInputData(splattest::SurfelGrid(81, 81, 0.025, 0.5));
+  const double center[3] = { 0.0, 0.0, 0.0 };
+  const double u[3] = { 0.025, 0.0, 0.0125 }; // the plane z = x / 2
+  const double v[3] = { 0.0, 0.025, 0.0 };
+  splatMapper->SetInputData(splattest::SurfelPlane(center, u, v, 81, 81));
   vtkNew<vtkPlaneSource> plane;
   plane->SetOrigin(-1.0, -1.0, 0.0);
   plane->SetPoint1(1.0, -1.0, 0.0);
