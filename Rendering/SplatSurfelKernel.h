@@ -179,40 +179,64 @@ struct PlaneDepth
 };
 
 /**
- * Tangent plane (point p, normal n, in model coordinates) to its per-pixel depth. clipToModel and
- * clipToEye are the inverses of the model-to-clip and projection matrices. Returns false when the
- * plane contains the view direction at the surfel (edge-on in clip space), where its depth is not
- * a function of the pixel.
+ * The view rays of a frame: pixel position (x, y) sees the eye-space points
+ * Origin(x, y) + t Direction(x, y) at depth t (the distance in front of the camera along -z),
+ * each an affine function of (x, y): A x + B y + C. Perspective projections have Origin = 0 and
+ * Direction.z = -1; parallel projections a constant Direction (0, 0, -1) and Origin.z = 0.
  */
-inline bool MakePlaneDepth(const glm::dmat4& clipToModel, const glm::dmat4& clipToEye,
-  const glm::dvec2& viewportSize, const glm::dvec3& p, const glm::dvec3& n, PlaneDepth& out)
+struct PixelRays
 {
-  // A plane transforms with the inverse transpose: pi_clip = (modelToClip^-1)^T pi_model.
-  const glm::dvec4 planeModel(n, -glm::dot(n, p));
-  const glm::dvec4 plane = planeModel * clipToModel;
-  const double scale = glm::length(glm::dvec3(plane));
-  if (!(std::abs(plane.z) > 1e-12 * scale))
+  glm::dmat3 Origin{ 0.0 };    ///< columns A, B, C
+  glm::dmat3 Direction{ 0.0 }; ///< columns A, B, C
+  bool Perspective = true;
+};
+
+/**
+ * The pixel rays of the projection eyeToClip (OpenGL clip space, NDC z in [-1, 1]) over a
+ * viewport of the given size.
+ */
+inline PixelRays MakePixelRays(const glm::dmat4& eyeToClip, const glm::dvec2& viewportSize)
+{
+  // The eye-space point of pixel (x, y) on the near plane, E(x, y) = clipToEye (x_ndc, y_ndc,
+  // -1, 1) / w, is affine in (x, y): the projection's w does not depend on x_ndc, y_ndc.
+  const glm::dmat4 clipToEye = glm::inverse(eyeToClip);
+  const glm::dvec4 corner = clipToEye * glm::dvec4(-1.0, -1.0, -1.0, 1.0);
+  const double w = corner.w;
+  const glm::dvec3 a = glm::dvec3(clipToEye[0]) * (2.0 / viewportSize.x) / w;
+  const glm::dvec3 b = glm::dvec3(clipToEye[1]) * (2.0 / viewportSize.y) / w;
+  const glm::dvec3 c = glm::dvec3(corner) / w;
+  PixelRays rays;
+  rays.Perspective = eyeToClip[3][3] == 0.0;
+  if (rays.Perspective)
   {
-    return false;
+    // Perspective: rays from the eye through E, scaled to unit depth.
+    const double depth = -c.z;
+    rays.Direction = glm::dmat3(a / depth, b / depth, c / depth);
   }
-  // On the plane, z_ndc = -(pi.x x_ndc + pi.y y_ndc + pi.w) / pi.z; with x_ndc = 2 x / W - 1 the
-  // homogeneous NDC point v = (x_ndc, y_ndc, z_ndc, 1) is affine in the pixel (x, y): v = V (x, y, 1).
-  const double sx = 2.0 / viewportSize.x;
-  const double sy = 2.0 / viewportSize.y;
-  const glm::dvec3 zRow(-plane.x * sx / plane.z, -plane.y * sy / plane.z,
-    (plane.x + plane.y - plane.w) / plane.z);
-  // Rows of V: x_ndc, y_ndc, z_ndc, 1 as functions of (x, y, 1).
-  const glm::dvec3 rows[4] = { { sx, 0.0, -1.0 }, { 0.0, sy, -1.0 }, zRow, { 0.0, 0.0, 1.0 } };
-  // Eye z = (E_2 . v) / (E_3 . v) with E the inverse projection; depth = -z_eye.
-  glm::dvec3 num(0.0), den(0.0);
-  for (int i = 0; i < 4; ++i)
+  else
   {
-    num -= clipToEye[i][2] * rows[i];
-    den += clipToEye[i][3] * rows[i];
+    // Parallel: rays along -z from E moved to the eye's plane z = 0.
+    rays.Origin = glm::dmat3(a, b, glm::dvec3(c.x, c.y, 0.0));
+    rays.Direction = glm::dmat3(glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0, 0.0, -1.0));
   }
-  out.Numerator = num;
-  out.Denominator = den;
-  return true;
+  return rays;
+}
+
+/**
+ * The depth of the tangent plane through eye-space point p with eye-space normal n along each
+ * pixel's ray: t = (n.p - n.Origin(x, y)) / (n.Direction(x, y)). Returns false when the plane
+ * contains the view ray through p (edge-on), where its depth is not a function of the pixel.
+ */
+inline bool MakePlaneDepth(
+  const PixelRays& rays, const glm::dvec3& p, const glm::dvec3& n, PlaneDepth& out)
+{
+  const glm::dvec3 nOrigin = n * rays.Origin;       // (n.A, n.B, n.C) of the origins
+  const glm::dvec3 nDirection = n * rays.Direction; // and of the directions
+  out.Numerator = glm::dvec3(-nOrigin.x, -nOrigin.y, glm::dot(n, p) - nOrigin.z);
+  out.Denominator = nDirection;
+  // The denominator on p's own ray, relative to the ray's length.
+  const glm::dvec3 direction = rays.Perspective ? p / -p.z : glm::dvec3(0.0, 0.0, -1.0);
+  return std::abs(glm::dot(n, direction)) > 1e-9 * glm::length(direction);
 }
 
 /**

@@ -65,16 +65,17 @@ namespace
 using Fragment = vtkSurfaceSplatRasterizer::Fragment;
 using ScreenSplat = vtkSurfaceSplatRasterizer::ScreenSplat;
 
-void Accumulate(Fragment& f, float z, float w, const ScreenSplat& s)
+inline void Accumulate(Fragment& f, float z, float w, const ScreenSplat& s)
 {
   f.Depth = std::min(f.Depth, z);
   f.Weight += w;
   f.Alpha += w * s.Alpha;
-  for (int c = 0; c < 3; ++c)
-  {
-    f.Color[c] += w * s.Color[c];
-    f.Normal[c] += w * s.Normal[c];
-  }
+  f.Color[0] += w * s.Color[0];
+  f.Color[1] += w * s.Color[1];
+  f.Color[2] += w * s.Color[2];
+  f.Normal[0] += w * s.Normal[0];
+  f.Normal[1] += w * s.Normal[1];
+  f.Normal[2] += w * s.Normal[2];
 }
 
 Fragment NewFragment(float z, float w, const ScreenSplat& s)
@@ -90,6 +91,62 @@ Fragment NewFragment(float z, float w, const ScreenSplat& s)
   }
   return f;
 }
+
+// An opaque contribution to a pixel's fragments, sorted front to back: it joins the surface
+// within its z threshold, or becomes a new surface; what falls behind the last of `layers`
+// fragments is hidden and dropped.
+inline void AddOpaque(
+  Fragment* fragments, std::uint8_t& count, int layers, float z, float w, const ScreenSplat& s)
+{
+  int i = 0;
+  while (i < count && z > fragments[i].Depth + s.Threshold)
+  {
+    ++i;
+  }
+  if (i < count && z >= fragments[i].Depth - s.Threshold)
+  {
+    Accumulate(fragments[i], z, w, s);
+    return;
+  }
+  if (i == layers)
+  {
+    return;
+  }
+  const int kept = std::min<int>(count, layers - 1);
+  for (int j = kept; j > i; --j)
+  {
+    fragments[j] = fragments[j - 1];
+  }
+  fragments[i] = NewFragment(z, w, s);
+  count = static_cast<std::uint8_t>(kept + 1);
+}
+
+// exp(-beta) for beta in [0, cutoff], tabulated once per frame and linearly interpolated: the
+// paper's lookup table, within 2e-6 of std::exp for the default cutoff.
+class NegativeExponential
+{
+public:
+  explicit NegativeExponential(float cutoff)
+    : Scale(Size / cutoff)
+  {
+    for (int i = 0; i <= Size + 1; ++i)
+    {
+      this->Table[i] = std::exp(-static_cast<float>(i) / this->Scale);
+    }
+  }
+
+  float operator()(float beta) const
+  {
+    const float t = beta * this->Scale;
+    const int i = static_cast<int>(t);
+    return this->Table[i] + (t - i) * (this->Table[i + 1] - this->Table[i]);
+  }
+
+private:
+  static constexpr int Size = 1024;
+  float Scale;
+  float Table[Size + 2];
+};
 }
 
 //------------------------------------------------------------------------------
@@ -194,19 +251,26 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
     return;
   }
 
-  const glm::dmat4 modelToClip = camera.EyeToClip * camera.ModelToEye;
-  const glm::dmat4 clipToModel = glm::inverse(modelToClip);
-  const glm::dmat4& clipToEye = frame.ClipToEye;
-  const glm::dmat3 normalToEye = glm::transpose(glm::inverse(glm::dmat3(camera.ModelToEye)));
+  const glm::dmat4& modelToEye = camera.ModelToEye;
+  const glm::dmat4& eyeToClip = camera.EyeToClip;
+  const glm::dmat3 normalToEye = glm::transpose(glm::inverse(glm::dmat3(modelToEye)));
   const glm::dvec2 viewport(width, height);
-  const bool perspective = camera.EyeToClip[3][3] == 0.0;
+  const splat::PixelRays rays = splat::MakePixelRays(eyeToClip, viewport);
+  // Depths of the near and far planes: the eye depths of NDC z = -1 and 1.
+  auto eyeDepth = [&frame](double zNdc)
+  {
+    const glm::dvec4 eye = frame.ClipToEye * glm::dvec4(0.0, 0.0, zNdc, 1.0);
+    return -eye.z / eye.w;
+  };
+  const double nearDepth = eyeDepth(-1.0);
+  const double farDepth = eyeDepth(1.0);
   const double cutoff = this->Cutoff;
   const double depthThreshold = this->DepthThreshold;
   const splat::KernelFilter filter = this->Filter;
   // Hidden back faces may only be left out of an opaque surface.
   const bool cullBackFaces = this->BackfaceCulling && !translucent;
 
-  // 1. Setup.
+  // 1. Setup, in eye space.
   std::vector<ScreenSplat>& splats = this->Internal->Splats;
   splats.resize(surfels.Count);
   vtkSMPTools::For(0, static_cast<vtkIdType>(surfels.Count),
@@ -216,25 +280,24 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
       {
         ScreenSplat& s = splats[i];
         s.Culled = OutsideFrustum;
-        const glm::dvec3 p(surfels.Positions[3 * i], surfels.Positions[3 * i + 1],
-          surfels.Positions[3 * i + 2]);
-        const glm::dvec3 n(
-          surfels.Normals[3 * i], surfels.Normals[3 * i + 1], surfels.Normals[3 * i + 2]);
-        const glm::dvec3 a0(
-          surfels.Axes0[3 * i], surfels.Axes0[3 * i + 1], surfels.Axes0[3 * i + 2]);
-        const glm::dvec3 a1(
-          surfels.Axes1[3 * i], surfels.Axes1[3 * i + 1], surfels.Axes1[3 * i + 2]);
-
-        const glm::dvec4 clip = modelToClip * glm::dvec4(p, 1.0);
-        splat::SurfelProjection projection;
-        if (clip.z < -clip.w || clip.z > clip.w ||
-          !splat::ProjectSurfel(modelToClip, viewport, p, a0, a1, projection))
+        const double* position = surfels.Positions + 3 * i;
+        const float* n = surfels.Normals + 3 * i;
+        const float* axis0 = surfels.Axes0 + 3 * i;
+        const float* axis1 = surfels.Axes1 + 3 * i;
+        const glm::dvec3 p(modelToEye * glm::dvec4(position[0], position[1], position[2], 1.0));
+        if (!(-p.z >= nearDepth && -p.z <= farDepth))
         {
           continue;
         }
-        const glm::dvec3 eye(camera.ModelToEye * glm::dvec4(p, 1.0));
-        glm::dvec3 normal = glm::normalize(normalToEye * n);
-        const glm::dvec3 view = perspective ? eye : glm::dvec3(0.0, 0.0, -1.0);
+        const glm::dvec3 a0(modelToEye * glm::dvec4(axis0[0], axis0[1], axis0[2], 0.0));
+        const glm::dvec3 a1(modelToEye * glm::dvec4(axis1[0], axis1[1], axis1[2], 0.0));
+        splat::SurfelProjection projection;
+        if (!splat::ProjectSurfel(eyeToClip, viewport, p, a0, a1, projection))
+        {
+          continue;
+        }
+        glm::dvec3 normal = glm::normalize(normalToEye * glm::dvec3(n[0], n[1], n[2]));
+        const glm::dvec3 view = rays.Perspective ? p : glm::dvec3(0.0, 0.0, -1.0);
         const bool backFacing = glm::dot(normal, view) > 0.0;
         if (backFacing && cullBackFaces)
         {
@@ -272,9 +335,9 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         s.Amplitude = static_cast<float>(kernel.Amplitude);
 
         splat::PlaneDepth depth;
-        if (!splat::MakePlaneDepth(clipToModel, clipToEye, viewport, p, n, depth))
+        if (!splat::MakePlaneDepth(rays, p, normal, depth))
         {
-          depth.Numerator = glm::dvec3(0.0, 0.0, -eye.z);
+          depth.Numerator = glm::dvec3(0.0, 0.0, -p.z);
           depth.Denominator = glm::dvec3(0.0, 0.0, 1.0);
         }
         for (int c = 0; c < 3; ++c)
@@ -282,10 +345,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           s.DepthNumerator[c] = static_cast<float>(depth.Numerator[c]);
           s.DepthDenominator[c] = static_cast<float>(depth.Denominator[c]);
         }
-        const double eyeRadius =
-          std::max(glm::length(glm::dvec3(camera.ModelToEye * glm::dvec4(a0, 0.0))),
-            glm::length(glm::dvec3(camera.ModelToEye * glm::dvec4(a1, 0.0))));
-        s.Threshold = static_cast<float>(depthThreshold * eyeRadius);
+        s.Threshold =
+          static_cast<float>(depthThreshold * std::max(glm::length(a0), glm::length(a1)));
 
         // Two-sided lighting: turn every normal towards the viewer before it is filtered.
         if (backFacing)
@@ -366,6 +427,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   }
   const float* sceneDepths = sceneEyeDepths.empty() ? nullptr : sceneEyeDepths.data();
   const int layers = this->Layers;
+  const NegativeExponential exponential(cutoffF);
   std::vector<vtkIdType> fragments(bands, 0);
   vtkSMPTools::For(0, bands, 1,
     [&](vtkIdType bandBegin, vtkIdType bandEnd)
@@ -398,30 +460,37 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
               s.X0, static_cast<int>(std::ceil(s.CenterX + (-bq - root) * inverse - 0.5f)));
             const int xEnd = std::min(
               s.X1, static_cast<int>(std::floor(s.CenterX + (-bq + root) * inverse - 0.5f)));
-            const float rowNum = s.DepthNumerator[1] * py + s.DepthNumerator[2];
-            const float rowDen = s.DepthDenominator[1] * py + s.DepthDenominator[2];
+            // Forward differences along the row (paper 000, section 4): the exponent is
+            // quadratic and the depth's numerator and denominator affine in x.
+            const float dx0 = xBegin + 0.5f - s.CenterX;
+            float beta = s.ConicXX * dx0 * dx0 + s.ConicXY * dx0 * dy + s.ConicYY * dy * dy;
+            float betaStep = s.ConicXX * (2.0f * dx0 + 1.0f) + s.ConicXY * dy;
+            const float betaStep2 = 2.0f * s.ConicXX;
+            const float px0 = xBegin + 0.5f;
+            float numerator = s.DepthNumerator[0] * px0 + s.DepthNumerator[1] * py +
+              s.DepthNumerator[2];
+            float denominator = s.DepthDenominator[0] * px0 + s.DepthDenominator[1] * py +
+              s.DepthDenominator[2];
             std::size_t pixel = static_cast<std::size_t>(y) * width + xBegin;
-            for (int x = xBegin; x <= xEnd; ++x, ++pixel)
+            for (int x = xBegin; x <= xEnd; ++x, ++pixel, beta += betaStep,
+                     betaStep += betaStep2, numerator += s.DepthNumerator[0],
+                     denominator += s.DepthDenominator[0])
             {
-              const float px = x + 0.5f;
-              const float dx = px - s.CenterX;
-              const float beta = s.ConicXX * dx * dx + s.ConicXY * dx * dy + s.ConicYY * dy * dy;
-              if (beta >= cutoffF)
+              if (!(beta < cutoffF) || beta < 0.0f)
               {
-                continue;
+                continue; // rounding at the span's ends
               }
-              const float z =
-                (s.DepthNumerator[0] * px + rowNum) / (s.DepthDenominator[0] * px + rowDen);
+              const float z = numerator / denominator;
               if (sceneDepths && z > sceneDepths[pixel])
               {
                 continue; // hidden by opaque geometry already in the scene
               }
-              const float w = s.Amplitude * std::exp(-beta);
+              const float w = s.Amplitude * exponential(beta);
               Fragment* pixelFragments = &this->Fragments[pixel * layers];
               std::uint8_t& count = this->FragmentCounts[pixel];
               if (!translucent)
               {
-                this->AddOpaque(pixelFragments, count, z, w, s);
+                AddOpaque(pixelFragments, count, layers, z, w, s);
               }
               else
               {
@@ -438,32 +507,6 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   {
     this->FragmentCount += f;
   }
-}
-
-//------------------------------------------------------------------------------
-void vtkSurfaceSplatRasterizer::AddOpaque(
-  Fragment* fragments, std::uint8_t& count, float z, float w, const ScreenSplat& s) const
-{
-  // Fragments are sorted front to back. The contribution joins the surface within its z
-  // threshold, or becomes a new surface; what falls behind the last layer is hidden and dropped.
-  int i = 0;
-  while (i < count && z > fragments[i].Depth + s.Threshold)
-  {
-    ++i;
-  }
-  if (i < count && z >= fragments[i].Depth - s.Threshold)
-  {
-    Accumulate(fragments[i], z, w, s);
-    return;
-  }
-  if (i == this->Layers)
-  {
-    return;
-  }
-  const int kept = std::min<int>(count, this->Layers - 1);
-  std::copy_backward(fragments + i, fragments + kept, fragments + kept + 1);
-  fragments[i] = NewFragment(z, w, s);
-  count = static_cast<std::uint8_t>(kept + 1);
 }
 
 //------------------------------------------------------------------------------

@@ -181,8 +181,6 @@ protected:
 
   void Splat(const Surfels& surfels, const Camera& camera, const std::vector<splat::Light>& lights,
     const splat::Material& material);
-  void AddOpaque(
-    Fragment* fragments, std::uint8_t& count, float z, float w, const ScreenSplat& s) const;
   void AddLayered(Fragment* fragments, std::uint8_t& count, int x, int y, float z, float w,
     const ScreenSplat& s) const;
   /// Shaded premultiplied color and alpha (coverage included) of a fragment at pixel (x, y).

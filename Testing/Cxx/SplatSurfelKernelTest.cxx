@@ -113,29 +113,30 @@ TEST(SurfelKernel, BoundingBoxIsTightAroundTheCutoffEllipse)
 // covered pixel equals the ray/plane intersection, not the affine approximation.
 TEST(SurfelKernel, PlaneDepthIsTheRayIntersection)
 {
-  const glm::dmat4 view =
-    glm::lookAt(glm::dvec3(0.2, 0.1, 3.0), glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0));
-  const glm::dmat4 projection = Projection();
-  const glm::dmat4 modelToClip = projection * view;
-  const glm::dvec3 p(0.1, -0.2, 0.3);
+  const glm::dmat4 projections[2] = { Projection(),
+    glm::ortho(-2.0, 2.0, -1.5, 1.5, 0.5, 20.0) };
+  const glm::dvec3 p(0.1, -0.2, -3.3); // eye space
   const glm::dvec3 n = glm::normalize(glm::dvec3(0.6, 0.2, 0.7));
-  splat::PlaneDepth depth;
-  ASSERT_TRUE(splat::MakePlaneDepth(
-    glm::inverse(modelToClip), glm::inverse(projection), Viewport, p, n, depth));
-  const glm::dmat4 eyeToModel = glm::inverse(view);
-  const glm::dvec3 eyeModel(eyeToModel * glm::dvec4(0.0, 0.0, 0.0, 1.0));
-  for (double x = 100.5; x < 600.0; x += 50.0)
+  for (const glm::dmat4& projection : projections)
   {
-    for (double y = 50.5; y < 450.0; y += 50.0)
+    const splat::PixelRays rays = splat::MakePixelRays(projection, Viewport);
+    splat::PlaneDepth depth;
+    ASSERT_TRUE(splat::MakePlaneDepth(rays, p, n, depth));
+    const glm::dmat4 clipToEye = glm::inverse(projection);
+    for (double x = 100.5; x < 600.0; x += 50.0)
     {
-      // The pixel's ray through the far plane, back to model space.
-      const glm::dvec4 farClip((2.0 * x / Viewport.x - 1.0), (2.0 * y / Viewport.y - 1.0), 1.0, 1.0);
-      const glm::dvec4 farModel = glm::inverse(modelToClip) * farClip;
-      const glm::dvec3 direction = glm::dvec3(farModel) / farModel.w - eyeModel;
-      const double t = glm::dot(n, p - eyeModel) / glm::dot(n, direction);
-      const glm::dvec3 hit = eyeModel + t * direction;
-      const double expected = -(view * glm::dvec4(hit, 1.0)).z;
-      EXPECT_NEAR(depth(x, y), expected, 1e-9 * expected);
+      for (double y = 50.5; y < 450.0; y += 50.0)
+      {
+        // The pixel's ray through its near and far points, unprojected.
+        const glm::dvec2 ndc(2.0 * x / Viewport.x - 1.0, 2.0 * y / Viewport.y - 1.0);
+        const glm::dvec4 nearPoint = clipToEye * glm::dvec4(ndc, -1.0, 1.0);
+        const glm::dvec4 farPoint = clipToEye * glm::dvec4(ndc, 1.0, 1.0);
+        const glm::dvec3 a = glm::dvec3(nearPoint) / nearPoint.w;
+        const glm::dvec3 b = glm::dvec3(farPoint) / farPoint.w;
+        const double t = glm::dot(n, p - a) / glm::dot(n, b - a);
+        const double expected = -(a + t * (b - a)).z;
+        EXPECT_NEAR(depth(x, y), expected, 1e-9 * expected);
+      }
     }
   }
 }
