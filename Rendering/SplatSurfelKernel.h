@@ -115,9 +115,21 @@ enum class KernelFilter
 /// invertible; far below a pixel, it does not band-limit.
 constexpr double UnfilteredMinimumVariance = 1e-6;
 
-/// Peak weight below which a kernel is left out: after normalization and coverage it cannot
-/// change an 8-bit pixel (an edge-on surfel, whose |J| vanishes, is the usual case).
-constexpr double NegligibleAmplitude = 1.0 / 1024.0;
+/// Foreshortening below which a surfel is edge-on and left out: next to a face-on neighbor at
+/// the same distance it weighs less than a thousandth (weights scale with |J|).
+constexpr double EdgeOnForeshortening = 1e-3;
+
+/**
+ * How much the projection foreshortens a surfel: |J| relative to the mean squared length of its
+ * projected axes, 1 for a face-on circle, 0 edge-on. Independent of distance and of the
+ * surfel's size, unlike |J| itself, which also shrinks with the square of the distance.
+ */
+inline double Foreshortening(const SurfelProjection& projection)
+{
+  const glm::dmat2& J = projection.Jacobian;
+  const double squaredAxes = glm::dot(J[0], J[0]) + glm::dot(J[1], J[1]);
+  return squaredAxes > 0.0 ? 2.0 * std::abs(glm::determinant(J)) / squaredAxes : 0.0;
+}
 
 /**
  * Builds the kernel of eq. (6) from a projection. With the EWA filter the low-pass term +I keeps

@@ -24,6 +24,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkScalarsToColors.h"
+#include "vtkTimeStamp.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -43,7 +44,7 @@ struct vtkSurfaceSplatMapper::SurfelArrays
   std::vector<float> Colors;
   std::vector<float> Opacities; // empty when every opacity is 1
   bool ColorsFromScalars = false;
-  vtkMTimeType BuildTime = 0;
+  vtkTimeStamp BuildTime;
 
   vtkSurfaceSplatRasterizer::Surfels View() const
   {
@@ -303,12 +304,12 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
 {
   vtkPolyData* input = this->GetInput();
   vtkProperty* property = actor->GetProperty();
-  vtkMTimeType buildNeeded = std::max(
+  const vtkMTimeType changed = std::max(
     { input->GetMTime(), this->GetMTime(), property->GetMTime(), this->LookupTable
         ? this->LookupTable->GetMTime()
         : vtkMTimeType(0) });
   SurfelArrays& s = *this->Surfels;
-  if (s.BuildTime >= buildNeeded && s.BuildTime > 0)
+  if (s.BuildTime.GetMTime() > changed)
   {
     return true;
   }
@@ -450,7 +451,7 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
                     << " points skipped: non-finite position, normal, radius or axis, zero "
                        "normal, non-positive radius or parallel axes.");
   }
-  s.BuildTime = buildNeeded;
+  s.BuildTime.Modified();
   return true;
 }
 

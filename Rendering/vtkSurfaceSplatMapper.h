@@ -28,7 +28,8 @@
  *
  * Each render leaves out what the frame does not need, and counts it: splats outside the view
  * frustum, splats facing away when the actor's property has BackfaceCulling on (for closed,
- * consistently oriented, opaque surfaces), and splats whose peak weight is negligible (edge-on).
+ * consistently oriented, opaque surfaces), and edge-on splats (foreshortened below a thousandth
+ * of their face-on area), whose weight is negligible next to their neighbors.
  *
  * Transparency is order-independent within the mapper: a translucent input is splatted into a
  * frame buffer of NumberOfLayers fragments per pixel (paper 000, section 6) and blended back to

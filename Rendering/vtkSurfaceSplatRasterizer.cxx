@@ -226,14 +226,15 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const int width = camera.Viewport.x;
   const int height = camera.Viewport.y;
   const std::size_t pixels = static_cast<std::size_t>(std::max(width, 0)) * std::max(height, 0);
-  // NumberOfLayers only where something is translucent. An opaque scene keeps one fragment per
-  // pixel, or two with edge antialiasing: a partly covered edge and the surface it shows.
+  // Layers only where something can be seen through: translucent splats, or the partly covered
+  // edges of edge antialiasing, which show the surfaces behind them (an edge of a thin part
+  // shows its own back side first). Otherwise one fragment per pixel.
   bool translucent = false;
   for (std::size_t i = 0; surfels.Opacities && i < surfels.Count && !translucent; ++i)
   {
     translucent = surfels.Opacities[i] < 1.0f;
   }
-  this->Layers = translucent ? this->NumberOfLayers : (this->EdgeAntialiasing ? 2 : 1);
+  this->Layers = translucent || this->EdgeAntialiasing ? this->NumberOfLayers : 1;
   this->Fragments.resize(pixels * this->Layers);
   this->FragmentCounts.assign(pixels, 0);
   this->SplattedCount = this->FrustumCulledCount = this->BackfaceCulledCount = 0;
@@ -304,13 +305,13 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           s.Culled = BackFacing;
           continue;
         }
-        const splat::ResamplingKernel kernel =
-          splat::MakeResamplingKernel(projection, cutoff, filter);
-        if (!(kernel.Amplitude >= splat::NegligibleAmplitude))
+        if (!(splat::Foreshortening(projection) >= splat::EdgeOnForeshortening))
         {
           s.Culled = Negligible;
           continue;
         }
+        const splat::ResamplingKernel kernel =
+          splat::MakeResamplingKernel(projection, cutoff, filter);
         const glm::dvec2 lo = kernel.Center - kernel.HalfExtent - 0.5;
         const glm::dvec2 hi = kernel.Center + kernel.HalfExtent - 0.5;
         if (!(hi.x >= 0.0 && hi.y >= 0.0 && lo.x <= width - 1 && lo.y <= height - 1))

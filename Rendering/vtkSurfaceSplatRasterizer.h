@@ -12,10 +12,10 @@
  *    box, and the depth of its tangent plane as a function of the pixel (SplatSurfelKernel.h).
  * 2. Splatting, parallel over horizontal bands of the image: each band visits the kernels that
  *    overlap it in input order, so the image does not depend on the number of threads. Opaque
- *    scenes keep the nearest surface of each pixel (and the one behind it, which a partly
- *    covered edge shows, with edge antialiasing): a contribution is accumulated into a surface
- *    within the z threshold (a multiple of the surfel's eye-space radius), inserted in front,
- *    or dropped behind. Translucent scenes keep up to NumberOfLayers fragments per pixel (section 6):
+ *    scenes keep the nearest surface of each pixel (and, with edge antialiasing, the ones
+ *    behind it that a partly covered edge shows, up to NumberOfLayers): a contribution is
+ *    accumulated into a surface within the z threshold (a multiple of the surfel's eye-space
+ *    radius), inserted in front, or dropped behind. Translucent scenes keep up to NumberOfLayers fragments per pixel (section 6):
  *    accumulate-or-separate, insertion into a free layer, or merging of the two fragments
  *    nearest in depth, shaded first (eq. 12).
  * 3. Resolve: normalization by the summed weights (eq. 9), deferred shading of the filtered
@@ -64,9 +64,9 @@ public:
   static constexpr int MaximumLayers = 8;
 
   /**
-   * Fragments per pixel for translucent scenes (paper 000, section 6). Default 3. Opaque scenes
-   * (every opacity 1) do not use it: they keep one fragment per pixel, two with edge
-   * antialiasing.
+   * Fragments per pixel (paper 000, section 6) for translucent scenes, and for the partly
+   * covered edges of opaque ones with edge antialiasing. Default 3. Opaque scenes without edge
+   * antialiasing keep one fragment per pixel and allocate no more.
    */
   vtkSetClampMacro(NumberOfLayers, int, 1, MaximumLayers);
   vtkGetMacro(NumberOfLayers, int);
@@ -165,7 +165,7 @@ public:
   /**
    * What the last frame did: surfels splatted; surfels left out because they lie outside the
    * view frustum (behind the eye, outside the near/far range, footprint outside the viewport),
-   * face away with BackfaceCulling on, or have a negligible peak weight (edge-on); and pixel
+   * face away with BackfaceCulling on, or are edge-on (negligible weight); and pixel
    * contributions written.
    */
   vtkGetMacro(SplattedCount, vtkIdType);

@@ -164,14 +164,30 @@ TEST(SurfelKernel, CircularAndUnfilteredFilters)
   const splat::ResamplingKernel filtered = splat::MakeResamplingKernel(projection, 1.0);
   EXPECT_LT(unfiltered.HalfExtent.x, 0.2);
   EXPECT_GT(filtered.HalfExtent.x, 1.4); // the low-pass keeps at least a pixel
-  // Edge-on: finite, and negligible, whatever the filter.
+  // Edge-on: finite whatever the filter, and recognized as edge-on.
   projection.Jacobian = glm::dmat2(3.0, 0.0, 6.0, 0.0);
+  EXPECT_EQ(splat::Foreshortening(projection), 0.0);
   for (splat::KernelFilter filter : { splat::KernelFilter::EWA, splat::KernelFilter::Circular,
          splat::KernelFilter::Unfiltered })
   {
     const splat::ResamplingKernel k = splat::MakeResamplingKernel(projection, 1.0, filter);
     EXPECT_TRUE(std::isfinite(k.Amplitude) && std::isfinite(k.HalfExtent.x) &&
       std::isfinite(k.Conic[0][0]));
-    EXPECT_LT(k.Amplitude, splat::NegligibleAmplitude);
+    EXPECT_EQ(k.Amplitude, 0.0);
+  }
+}
+
+// Foreshortening depends on the angle of view only: 1 face-on, cos(angle) for a tilted circle,
+// whatever the distance (the minified far splats of a plane are not edge-on).
+TEST(SurfelKernel, ForeshorteningIgnoresDistance)
+{
+  for (double scale : { 1e-3, 1.0, 1e3 })
+  {
+    splat::SurfelProjection projection;
+    projection.Jacobian = glm::dmat2(scale, 0.0, 0.0, scale);
+    EXPECT_NEAR(splat::Foreshortening(projection), 1.0, 1e-12);
+    const double c = std::cos(glm::radians(80.0));
+    projection.Jacobian = glm::dmat2(scale, 0.0, 0.0, scale * c);
+    EXPECT_NEAR(splat::Foreshortening(projection), 2.0 * c / (1.0 + c * c), 1e-12);
   }
 }

@@ -4,8 +4,12 @@
 
 Checks that
 - the plugin loads in the client (builtin) session;
-- mappers/SurfaceSplatMapper creates a vtkSurfaceSplatMapper whose Cutoff, Radius,
-  DepthThreshold and RadiusArrayName set through the proxy read back from the VTK object;
+- mappers/SurfaceSplatMapper creates a vtkSurfaceSplatMapper whose settings (Cutoff, Radius,
+  DepthThreshold, RadiusArrayName, FilterMode, NumberOfLayers, EdgeAntialiasing,
+  CoverageThreshold, OpacityArrayName, TangentAxis0ArrayName, TangentAxis1ArrayName) have their
+  defaults and, set through the proxy, read back from the VTK object (through their information
+  properties and the object's getters), and whose render statistics are exposed; a missing
+  property fails;
 - filters/SurfelGenerator is in paraview.simple after LoadPlugin, runs on a Sphere source and
   produces points with normals and a radius array.
 Any failure exits non-zero (a missing plugin, class or proxy included).
@@ -57,24 +61,99 @@ def test_mapper(servermanager):
 
     mapper = servermanager._getPyProxy(smproxy)
 
-    # Defaults pushed by the XML read back from the object.
-    check(close(info_value(smproxy, "CutoffInfo"), 1.0), "default Cutoff is 1")
+    # Every setting has its property and its information (read-back) property; every statistic
+    # its information-only property. A missing one fails here, before the round trips.
+    settings = ["Radius", "RadiusArrayName", "Cutoff", "DepthThreshold", "FilterMode",
+                "NumberOfLayers", "EdgeAntialiasing", "CoverageThreshold", "OpacityArrayName",
+                "TangentAxis0ArrayName", "TangentAxis1ArrayName"]
+    statistics = ["NumberOfSplats", "NumberOfRenderedSplats", "NumberOfCulledSplats",
+                  "NumberOfFrustumCulledSplats", "NumberOfBackfaceCulledSplats",
+                  "NumberOfNegligibleSplats", "NumberOfSkippedPoints",
+                  "LastRenderTimeInMilliseconds"]
+    for name in settings:
+        prop = smproxy.GetProperty(name)
+        check(prop is not None and not prop.GetInformationOnly(),
+              "property %s exists and is settable" % name)
+        info = smproxy.GetProperty(name + "Info")
+        check(info is not None and info.GetInformationOnly(),
+              "information property %sInfo exists" % name)
+        check(prop is not None and prop.GetInformationProperty() is not None
+              and prop.GetInformationProperty() == info,
+              "%s reads back through %sInfo" % (name, name))
+    for name in statistics:
+        prop = smproxy.GetProperty(name)
+        check(prop is not None and prop.GetInformationOnly(),
+              "statistic %s is an information-only property" % name)
+
+    # Defaults: the VTK object's state after the XML's defaults are pushed, read back through the
+    # information properties (they call the object's getters; the plugin has client-server
+    # wrapping only, so Python sees the object as its nearest Python-wrapped base class and cannot
+    # call them itself), agrees with the mapper's documented defaults.
+    smproxy.UpdateVTKObjects()
+    defaults = {"Cutoff": 1.0, "Radius": 1.0, "DepthThreshold": 1.0, "FilterMode": 0,
+                "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.4,
+                "RadiusArrayName": "Radius", "OpacityArrayName": "Opacity",
+                "TangentAxis0ArrayName": "TangentAxis0",
+                "TangentAxis1ArrayName": "TangentAxis1"}
+    for name, value in defaults.items():
+        got = info_value(smproxy, name + "Info")
+        if isinstance(value, str):
+            ok = got == value
+        else:
+            ok = close(got, value, 1e-9)
+        check(ok, "default %s is %r (got %r)" % (name, value, got))
+    check(mapper.FilterMode == "EWA", "default FilterMode reads as 'EWA' (got %r)"
+          % (mapper.FilterMode,))
+
+    # The FilterMode enumeration and the NumberOfLayers range.
+    enum = smproxy.GetProperty("FilterMode").FindDomain("vtkSMEnumerationDomain")
+    entries = {}
+    if check(enum is not None, "FilterMode has an enumeration domain"):
+        entries = {enum.GetEntryText(i): enum.GetEntryValue(i)
+                   for i in range(enum.GetNumberOfEntries())}
+    check(entries == {"EWA": 0, "Circular": 1, "Unfiltered": 2},
+          "FilterMode entries are EWA=0, Circular=1, Unfiltered=2 (got %s)" % (entries,))
+    layers = smproxy.GetProperty("NumberOfLayers").FindDomain("vtkSMIntRangeDomain")
+    if check(layers is not None, "NumberOfLayers has a range domain"):
+        check(layers.GetMinimum(0) == 1 and layers.GetMaximum(0) == 8,
+              "NumberOfLayers ranges over 1..8 (got %d..%d)"
+              % (layers.GetMinimum(0), layers.GetMaximum(0)))
+    check(smproxy.GetProperty("EdgeAntialiasing").FindDomain("vtkSMBooleanDomain") is not None,
+          "EdgeAntialiasing is a boolean")
 
     # Round trips: proxy property -> VTK object -> information property.
-    values = {"Cutoff": 2.5, "Radius": 0.125, "DepthThreshold": 0.75}
-    for name, value in values.items():
+    values = {"Cutoff": 2.5, "Radius": 0.125, "DepthThreshold": 0.75, "NumberOfLayers": 5,
+              "EdgeAntialiasing": 0, "CoverageThreshold": 0.25}
+    strings = {"RadiusArrayName": "SplatRadius", "OpacityArrayName": "SplatOpacity",
+               "TangentAxis0ArrayName": "MajorAxis", "TangentAxis1ArrayName": "MinorAxis"}
+    for name, value in list(values.items()) + list(strings.items()):
         setattr(mapper, name, value)
-    mapper.RadiusArrayName = "SplatRadius"
+    mapper.FilterMode = "Unfiltered"
     smproxy.UpdateVTKObjects()
+    values["FilterMode"] = 2
     for name, value in values.items():
         got = info_value(smproxy, name + "Info")
         check(close(got, value), "%s round-trips (set %g, got %s)" % (name, value, got))
-    got = info_value(smproxy, "RadiusArrayNameInfo")
-    check(got == "SplatRadius", "RadiusArrayName round-trips (got %r)" % (got,))
+    for name, value in strings.items():
+        got = info_value(smproxy, name + "Info")
+        check(got == value, "%s round-trips (set %r, got %r)" % (name, value, got))
+
+    # Back again, through the other values: a setting that only ever holds one value proves
+    # nothing.
+    mapper.FilterMode = "Circular"
+    mapper.EdgeAntialiasing = 1
+    mapper.NumberOfLayers = 8
+    smproxy.UpdateVTKObjects()
+    for name, value in {"FilterMode": 1, "EdgeAntialiasing": 1, "NumberOfLayers": 8}.items():
+        got = info_value(smproxy, name + "Info")
+        check(close(got, value), "%s round-trips (set %g, got %s)" % (name, value, got))
+    check(mapper.FilterMode == "Circular", "FilterMode reads as 'Circular' (got %r)"
+          % (mapper.FilterMode,))
 
     # Render statistics are exposed before any render.
-    skipped = info_value(smproxy, "NumberOfSkippedPoints")
-    check(skipped == 0, "NumberOfSkippedPoints is 0 before a render (got %s)" % (skipped,))
+    for name in statistics:
+        got = info_value(smproxy, name)
+        check(got == 0, "%s is 0 before a render (got %s)" % (name, got))
 
 
 def test_surfel_generator(simple, servermanager):
