@@ -12,6 +12,7 @@
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
 #include "vtkSmartPointer.h"
+#include "vtkSurfelSphereSource.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
 
@@ -57,36 +58,16 @@ inline void Pixel(vtkImageData* image, int x, int y, double rgb[3])
   }
 }
 
-/// n points uniformly spread on a sphere (Fibonacci lattice), radial normals and the radius
-/// sqrt(4 pi r^2 / n) that matches the sampling spacing.
-inline vtkSmartPointer<vtkPolyData> FibonacciSphere(vtkIdType n, double radius)
+/// n surfels spread uniformly over a sphere (vtkSurfelSphereSource), a copy the test may edit.
+inline vtkSmartPointer<vtkPolyData> SurfelSphere(vtkIdType n, double radius)
 {
-  vtkNew<vtkPoints> points;
-  points->SetNumberOfPoints(n);
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(n);
-  vtkNew<vtkFloatArray> radii;
-  radii->SetName("Radius");
-  radii->SetNumberOfTuples(n);
-  const double golden = vtkMath::Pi() * (3.0 - std::sqrt(5.0));
-  const double spacing = std::sqrt(4.0 * vtkMath::Pi() * radius * radius / n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const double z = 1.0 - (2.0 * i + 1.0) / n;
-    const double r = std::sqrt(1.0 - z * z);
-    const double phi = golden * i;
-    const double normal[3] = { r * std::cos(phi), r * std::sin(phi), z };
-    points->SetPoint(i, radius * normal[0], radius * normal[1], radius * normal[2]);
-    normals->SetTuple(i, normal);
-    radii->SetValue(i, static_cast<float>(spacing));
-  }
-  auto cloud = vtkSmartPointer<vtkPolyData>::New();
-  cloud->SetPoints(points);
-  cloud->GetPointData()->SetNormals(normals);
-  cloud->GetPointData()->AddArray(radii);
-  return cloud;
+  vtkNew<vtkSurfelSphereSource> source;
+  source->SetNumberOfPoints(n);
+  source->SetRadius(radius);
+  source->Update();
+  auto sphere = vtkSmartPointer<vtkPolyData>::New();
+  sphere->DeepCopy(source->GetOutput());
+  return sphere;
 }
 
 /// A regular nu x nv grid of surfels centered at `center` with step vectors u and v (their

@@ -14,7 +14,7 @@
 
 int main(int, char*[])
 {
-  vtkSmartPointer<vtkPolyData> cloud = splattest::FibonacciSphere(2000, 1.0);
+  vtkSmartPointer<vtkPolyData> cloud = splattest::SurfelSphere(2000, 1.0);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   cloud->GetPoints()->SetPoint(0, nan, 0.0, 0.0);

@@ -12,7 +12,7 @@
 
 int main(int argc, char* argv[])
 {
-  vtkSmartPointer<vtkPolyData> sphere = splattest::FibonacciSphere(20000, 1.0);
+  vtkSmartPointer<vtkPolyData> sphere = splattest::SurfelSphere(20000, 1.0);
   vtkNew<vtkFloatArray> height;
   height->SetName("Height");
   for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
