@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // splat_bench: a benchmark, not a test. Renders the same points with vtkSurfaceSplatMapper and
 // with its peer vtkPointGaussianMapper, in the same run, and prints one CSV row per case:
-// milliseconds per frame (median), splats per second and the process's peak memory so far.
+// milliseconds per frame (median), splats per second, the process's peak memory so far, what our
+// mapper culled and skipped, and the memory per splat that the case added.
 // Run `splat_bench --help` for the options.
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
@@ -41,6 +42,11 @@
 #include <vector>
 
 #include <sys/resource.h> // getrusage
+#include <unistd.h>       // sysconf
+
+#ifdef __GLIBC__
+#include <malloc.h> // malloc_trim
+#endif
 
 namespace
 {
@@ -50,19 +56,30 @@ Renders points on a unit sphere (Fibonacci sampling, radial normals, radius = sa
 and the Stanford bunny (vertices through vtkSurfelGenerator) with vtkSurfaceSplatMapper and with
 vtkPointGaussianMapper (opaque disks of the same radius, emissive off), offscreen, and
 prints CSV rows:
-  scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb
+  scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb,
+  rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat
+Settings: vtkSurfaceSplatMapper runs as "default" on every scene and, on the sphere (closed,
+outward normals), also as "backface" (the actor's BackfaceCulling on); vtkPointGaussianMapper
+runs as "disk".
 ms_per_frame is the median over the timed frames after one warm-up frame; peak_rss_mb is the
 peak resident memory of the whole process so far (cases run from small to large).
+rendered .. skipped are vtkSurfaceSplatMapper's counts for the last frame (splats drawn, culled
+outside the frustum, culled as back faces, left out as negligible, input points skipped as
+invalid); empty for vtkPointGaussianMapper, which does not report them.
+bytes_per_splat is the resident memory the case added (its data, mapper and frames) per point:
+the current resident set size (/proc/self/statm) after the case's frames minus the one before
+its data was built, divided by the number of points. A one-line summary per case goes to stderr.
 
 Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separated):
   --scenes LIST        sphere, bunny (default sphere,bunny; bunny is skipped when absent)
-  --points LIST        sphere point counts (default 100000,1000000)
+  --points LIST        sphere point counts (default 100000,1000000,5000000)
   --sizes LIST         square image sizes in pixels (default 512,1024)
   --mappers LIST       splat (vtkSurfaceSplatMapper), pointgaussian (vtkPointGaussianMapper)
                        (default splat,pointgaussian)
   --frames N           at most N timed frames per case (default 10)
-  --budget SECONDS     stop timing a case after this long, once 3 frames (or --frames, if
-                       fewer) are timed (default 10)
+  --budget SECONDS     time a case's frames within this many seconds: after the first timed
+                       frame, another is timed only while the elapsed time plus the last
+                       frame's stays within the budget (default 10)
   --quick              smoke run: 20000 sphere points, 256x256, 2 frames
   --output FILE        CSV file, also written to stdout (default output/bench/bench.csv)
   --image-dir DIR      also write each case's last frame as a PNG into DIR
@@ -80,11 +97,10 @@ struct UsageError : std::runtime_error
 struct Options
 {
   std::vector<std::string> Scenes = { "sphere", "bunny" };
-  std::vector<long long> Points = { 100000, 1000000 };
+  std::vector<long long> Points = { 100000, 1000000, 5000000 };
   std::vector<long long> Sizes = { 512, 1024 };
   std::vector<std::string> Mappers = { "splat", "pointgaussian" };
   int Frames = 10;
-  int MinFrames = 3;
   double Budget = 10.0;
   std::string Output = "output/bench/bench.csv";
   std::string ImageDir;
@@ -169,10 +185,7 @@ Options ParseCommandLine(int argc, char* argv[])
       } },
     { "--frames",
       [&](const std::string& name, const std::string& value)
-      {
-        options.Frames = static_cast<int>(ParseCount(name, value, 1, 100000));
-        options.MinFrames = std::min(options.MinFrames, options.Frames);
-      } },
+      { options.Frames = static_cast<int>(ParseCount(name, value, 1, 100000)); } },
     { "--budget",
       [&](const std::string& name, const std::string& value)
       { options.Budget = static_cast<double>(ParseCount(name, value, 0, 86400)); } },
@@ -194,7 +207,6 @@ Options ParseCommandLine(int argc, char* argv[])
       options.Points = { 20000 };
       options.Sizes = { 256 };
       options.Frames = 2;
-      options.MinFrames = 1;
       continue;
     }
     const auto equals = argument.find('=');
@@ -245,8 +257,8 @@ vtkSmartPointer<vtkPolyData> FibonacciSphere(vtkIdType n)
   return sphere;
 }
 
-// The bunny's vertices as surfels, or nullptr when bunny.ply is absent.
-vtkSmartPointer<vtkPolyData> BunnySurfels()
+// The path of bunny.ply, or an empty string when it is absent.
+std::string BunnyFile()
 {
   std::string folder;
   if (!vtksys::SystemTools::GetEnv("SPLAT_DATA_DIR", folder) || folder.empty())
@@ -257,8 +269,14 @@ vtkSmartPointer<vtkPolyData> BunnySurfels()
   if (!vtkPLYReader::CanReadFile(file.c_str()))
   {
     std::cerr << "splat_bench: bunny skipped: " << file << " is absent or unreadable\n";
-    return nullptr;
+    return std::string();
   }
+  return file;
+}
+
+// The bunny's vertices as surfels.
+vtkSmartPointer<vtkPolyData> BunnySurfels(const std::string& file)
+{
   vtkNew<vtkPLYReader> reader;
   reader->SetFileName(file.c_str());
   vtkNew<vtkSurfelGenerator> surfels;
@@ -273,11 +291,15 @@ struct MapperKind
   const char* Class;   // the VTK class (vtkPointGaussianMapper::New gives an OpenGL subclass)
   const char* Backend; // what draws the splats
   const char* Setting;
+  bool BackfaceCulling; // the actor property's BackfaceCulling
+  bool ClosedOnly;      // only for closed, outward-oriented scenes (the sphere)
 };
 
+// Cases per size, in this order, for the mappers chosen with --mappers.
 const MapperKind Kinds[] = {
-  { "splat", "vtkSurfaceSplatMapper", "CPU", "default" },
-  { "pointgaussian", "vtkPointGaussianMapper", "OpenGL", "disk" },
+  { "splat", "vtkSurfaceSplatMapper", "CPU", "default", false, false },
+  { "splat", "vtkSurfaceSplatMapper", "CPU", "backface", true, true },
+  { "pointgaussian", "vtkPointGaussianMapper", "OpenGL", "disk", false, false },
 };
 
 // vtkPointGaussianMapper draws opaque disks of the splats' world-space radius: the like-for-like
@@ -313,9 +335,36 @@ double PeakResidentMegabytes()
   return usage.ru_maxrss / 1024.0; // kilobytes on Linux
 }
 
+// The process's current resident set size in bytes: the second field of /proc/self/statm, in
+// pages. -1 where it cannot be read (not Linux).
+long long CurrentResidentBytes()
+{
+  std::ifstream statm("/proc/self/statm");
+  long long sizePages = 0;
+  long long residentPages = 0;
+  if (!(statm >> sizePages >> residentPages))
+  {
+    return -1;
+  }
+  return residentPages * static_cast<long long>(sysconf(_SC_PAGESIZE));
+}
+
+// Hands the heap's free memory back to the system, so the resident set is the memory in use:
+// without it, what an earlier case freed stays resident (glibc keeps freed heap pages and raises
+// its mmap threshold after large frees) and the next case reuses it without growing the RSS.
+void ReleaseFreeHeapMemory()
+{
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
 // Median milliseconds per frame after a warm-up frame (surfel build, buffer upload, shader
-// compilation): at least MinFrames, at most Frames, and no more once the budget is spent.
-double MillisecondsPerFrame(vtkRenderWindow* window, const Options& options)
+// compilation): at least one frame, at most Frames, and after the first only while the elapsed
+// time plus the last frame's stays within the budget (so that slow cases, such as
+// vtkPointGaussianMapper on millions of points under llvmpipe, keep to it). `frames` gets the
+// number of timed frames.
+double MillisecondsPerFrame(vtkRenderWindow* window, const Options& options, int& frames)
 {
   using Clock = std::chrono::steady_clock;
   window->Render();
@@ -323,8 +372,9 @@ double MillisecondsPerFrame(vtkRenderWindow* window, const Options& options)
   std::vector<double> ms;
   const auto start = Clock::now();
   while (static_cast<int>(ms.size()) < options.Frames &&
-    (static_cast<int>(ms.size()) < options.MinFrames ||
-      std::chrono::duration<double>(Clock::now() - start).count() < options.Budget))
+    (ms.empty() ||
+      std::chrono::duration<double>(Clock::now() - start).count() + ms.back() * 1e-3 <=
+        options.Budget))
   {
     const auto frameStart = Clock::now();
     window->Render();
@@ -332,6 +382,7 @@ double MillisecondsPerFrame(vtkRenderWindow* window, const Options& options)
     window->WaitForCompletion();
     ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - frameStart).count());
   }
+  frames = static_cast<int>(ms.size());
   std::sort(ms.begin(), ms.end());
   const std::size_t n = ms.size();
   return n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
@@ -361,47 +412,159 @@ void MakeDirectory(const std::string& folder)
   }
 }
 
-// Renders one scene at every size with every mapper into `window` and emits a CSV row per case;
-// returns the number of rows.
-int MeasureScene(vtkRenderWindow* window, const std::string& scene, vtkPolyData* surfels,
-  const Options& options, std::ostream& csv)
+// What one case measured.
+struct CaseResult
+{
+  vtkIdType Points = 0;
+  double Milliseconds = 0.0;
+  int Frames = 0;
+  bool HasCounts = false; // vtkSurfaceSplatMapper's statistics of the last frame
+  vtkIdType Rendered = 0;
+  vtkIdType FrustumCulled = 0;
+  vtkIdType BackfaceCulled = 0;
+  vtkIdType Negligible = 0;
+  vtkIdType Skipped = 0;
+  long long ResidentGrowth = 0; // bytes; see MeasureCase
+  bool HasResidentGrowth = false;
+};
+
+// Builds one case's data (makeData) and mapper, renders it in `window` and returns what it
+// measured; the case's actor, mapper and data are released on return.
+//
+// Memory per splat: the current resident set size (/proc/self/statm) is read twice, once
+// before the case's data and mapper are built and once after its timed frames, while they are
+// all still alive; the difference is what the case holds (points, normals and radii, the
+// mapper's surfel arrays and frame buffers, or vtkPointGaussianMapper's buffers and, on Mesa's
+// llvmpipe, its driver-side copies), and bytes_per_splat is that difference divided by the
+// number of points. So that both readings are the memory in use, the heap's free pages are
+// handed back (malloc_trim) before each: freed temporaries (the surfel generator's neighbor
+// search, vtkPointGaussianMapper's staging arrays) would otherwise stay resident and count. The
+// previous case is released before the first reading, and the window has already been rendered
+// once, empty, at the case's size (its own buffers are not the case's). It is the growth at the
+// end of the case, not a peak: transient allocations freed before the last frame are not in
+// it. Shared one-time costs (shader compilation, the driver's first-use allocations) land on the
+// first case that triggers them. At small point counts the per-pixel buffers (the rasterizer's
+// fragments at the case's image size) dominate.
+CaseResult MeasureCase(vtkRenderWindow* window, const MapperKind& kind,
+  const std::function<vtkSmartPointer<vtkPolyData>()>& makeData, const Options& options,
+  const std::string& scene, long long size)
 {
   vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
-  const vtkIdType points = surfels->GetNumberOfPoints();
+  CaseResult result;
+  ReleaseFreeHeapMemory();
+  const long long before = CurrentResidentBytes();
+  {
+    vtkSmartPointer<vtkPolyData> surfels = makeData();
+    result.Points = surfels->GetNumberOfPoints();
+    vtkSmartPointer<vtkMapper> mapper = MakeMapper(kind, surfels);
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetColor(0.85, 0.75, 0.6);
+    actor->GetProperty()->SetBackfaceCulling(kind.BackfaceCulling);
+    renderer->AddActor(actor);
+    // The same view for both mappers: their bounds differ (ours include the splat radii).
+    renderer->ResetCamera(surfels->GetBounds());
+
+    result.Milliseconds = MillisecondsPerFrame(window, options, result.Frames);
+    ReleaseFreeHeapMemory();
+    const long long after = CurrentResidentBytes();
+    if (before >= 0 && after >= 0)
+    {
+      result.ResidentGrowth = after - before;
+      result.HasResidentGrowth = true;
+    }
+    if (auto* splat = vtkSurfaceSplatMapper::SafeDownCast(mapper))
+    {
+      result.HasCounts = true;
+      result.Rendered = splat->GetNumberOfRenderedSplats();
+      result.FrustumCulled = splat->GetNumberOfFrustumCulledSplats();
+      result.BackfaceCulled = splat->GetNumberOfBackfaceCulledSplats();
+      result.Negligible = splat->GetNumberOfNegligibleSplats();
+      result.Skipped = splat->GetNumberOfSkippedPoints();
+    }
+    if (!options.ImageDir.empty())
+    {
+      WritePNG(window,
+        options.ImageDir + "/" + scene + "-" + std::to_string(result.Points) + "-" +
+          std::to_string(size) + "-" + kind.Name + "-" + kind.Setting + ".png");
+    }
+    // Releases the case's graphics resources; the actor, mapper and data go with this scope.
+    renderer->RemoveAllViewProps();
+  }
+  return result;
+}
+
+// Renders one scene (made afresh for every case by makeData) at every size with every chosen
+// mapper setting into `window` and emits a CSV row per case; returns the number of rows.
+int MeasureScene(vtkRenderWindow* window, const std::string& scene, bool closed,
+  const std::function<vtkSmartPointer<vtkPolyData>()>& makeData, const Options& options,
+  std::ostream& csv)
+{
+  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
   int rows = 0;
   for (long long size : options.Sizes)
   {
-    for (const auto& name : options.Mappers)
+    // The window's own buffers at this size, before any case's memory is measured.
+    renderer->RemoveAllViewProps();
+    window->SetSize(static_cast<int>(size), static_cast<int>(size));
+    window->Render();
+    window->WaitForCompletion();
+    for (const MapperKind& kind : Kinds)
     {
-      const MapperKind& kind = *std::find_if(
-        std::begin(Kinds), std::end(Kinds), [&](const MapperKind& k) { return name == k.Name; });
-      std::cerr << "splat_bench: " << scene << ", " << points << " points, " << size << "x" << size
-                << ", " << kind.Class << "\n";
-      vtkNew<vtkActor> actor;
-      actor->SetMapper(MakeMapper(kind, surfels));
-      actor->GetProperty()->SetColor(0.85, 0.75, 0.6);
-      renderer->RemoveAllViewProps(); // the previous case, with its graphics resources
-      renderer->AddActor(actor);
-      window->SetSize(static_cast<int>(size), static_cast<int>(size));
-      // The same view for both mappers: their bounds differ (ours include the splat radii).
-      renderer->ResetCamera(surfels->GetBounds());
+      if (std::find(options.Mappers.begin(), options.Mappers.end(), kind.Name) ==
+          options.Mappers.end() ||
+        (kind.ClosedOnly && !closed))
+      {
+        continue;
+      }
+      std::cerr << "splat_bench: " << scene << ", " << size << "x" << size << ", " << kind.Class
+                << " (" << kind.Setting << ") ...\n";
+      const CaseResult r = MeasureCase(window, kind, makeData, options, scene, size);
 
-      const double ms = MillisecondsPerFrame(window, options);
       std::ostringstream row;
       row << scene << "," << kind.Class << "," << kind.Backend << "," << kind.Setting << ","
-          << points << "," << size << "," << size << "," << std::fixed << std::setprecision(2) << ms
-          << "," << std::setprecision(0) << points / (ms * 1e-3) << "," << std::setprecision(1)
-          << PeakResidentMegabytes() << "\n";
+          << r.Points << "," << size << "," << size << "," << std::fixed << std::setprecision(2)
+          << r.Milliseconds << "," << std::setprecision(0) << r.Points / (r.Milliseconds * 1e-3)
+          << "," << std::setprecision(1) << PeakResidentMegabytes() << ",";
+      if (r.HasCounts)
+      {
+        row << r.Rendered << "," << r.FrustumCulled << "," << r.BackfaceCulled << ","
+            << r.Negligible << "," << r.Skipped << ",";
+      }
+      else
+      {
+        row << ",,,,,";
+      }
+      if (r.HasResidentGrowth && r.Points > 0)
+      {
+        row << std::setprecision(1) << static_cast<double>(r.ResidentGrowth) / r.Points;
+      }
+      row << "\n";
       std::cout << row.str() << std::flush;
       csv << row.str() << std::flush;
       ++rows;
 
-      if (!options.ImageDir.empty())
+      std::ostringstream summary;
+      summary << "splat_bench: " << scene << " " << r.Points << " points " << size << "x" << size
+              << " " << kind.Class << " " << kind.Setting << ": " << std::fixed
+              << std::setprecision(2) << r.Milliseconds << " ms/frame (median of " << r.Frames
+              << ")";
+      if (r.HasCounts)
       {
-        WritePNG(window,
-          options.ImageDir + "/" + scene + "-" + std::to_string(points) + "-" +
-            std::to_string(size) + "-" + kind.Name + ".png");
+        summary << "; rendered " << r.Rendered << ", frustum culled " << r.FrustumCulled
+                << ", backface culled " << r.BackfaceCulled << ", negligible " << r.Negligible
+                << ", skipped " << r.Skipped;
       }
+      if (r.HasResidentGrowth)
+      {
+        summary << "; RSS +" << std::setprecision(1) << r.ResidentGrowth / (1024.0 * 1024.0)
+                << " MB";
+        if (r.Points > 0)
+        {
+          summary << " (" << static_cast<double>(r.ResidentGrowth) / r.Points << " B/splat)";
+        }
+      }
+      std::cerr << summary.str() << "\n";
     }
   }
   return rows;
@@ -416,8 +579,10 @@ int Run(const Options& options)
   {
     throw std::runtime_error("cannot write '" + options.Output + "'");
   }
+  // The required columns first, then the culling counts and the memory per splat.
   const char* const header =
-    "scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb\n";
+    "scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb,"
+    "rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat\n";
   std::cout << header << std::flush;
   csv << header << std::flush;
 
@@ -437,17 +602,21 @@ int Run(const Options& options)
   int rows = 0;
   if (wants("bunny"))
   {
-    if (auto bunny = BunnySurfels())
+    const std::string bunny = BunnyFile();
+    if (!bunny.empty())
     {
-      rows += MeasureScene(window, "bunny", bunny, options, csv);
+      // The bunny has holes (its base): no backface setting.
+      rows += MeasureScene(
+        window, "bunny", false, [&]() { return BunnySurfels(bunny); }, options, csv);
     }
   }
   if (wants("sphere"))
   {
     for (long long n : options.Points)
     {
-      rows +=
-        MeasureScene(window, "sphere", FibonacciSphere(static_cast<vtkIdType>(n)), options, csv);
+      rows += MeasureScene(
+        window, "sphere", true,
+        [n]() { return FibonacciSphere(static_cast<vtkIdType>(n)); }, options, csv);
     }
   }
   std::cerr << "splat_bench: " << rows << " rows; CSV written to "
