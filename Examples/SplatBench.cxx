@@ -4,32 +4,26 @@
 // milliseconds per frame (median), splats per second, the process's peak memory so far, what our
 // mapper culled and skipped, and the memory per splat that the case added.
 // Run `splat_bench --help` for the options.
+#include "SplatCommandLine.h"
+#include "SplatExampleUtilities.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
+#include "vtkSurfelSphereSource.h"
 
 #include "vtkActor.h"
-#include "vtkErrorCode.h"
-#include "vtkFloatArray.h"
-#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPLYReader.h"
-#include "vtkPNGWriter.h"
-#include "vtkPointData.h"
-#include "vtkPointGaussianMapper.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
 #include "vtkSmartPointer.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -50,6 +44,10 @@
 
 namespace
 {
+using splatexample::ParseCount;
+using splatexample::SplitList;
+using splatexample::UsageError;
+
 const char* const Usage = R"(Usage: splat_bench [OPTIONS]
 
 Renders points on a unit sphere (Fibonacci sampling, radial normals, radius = sampling spacing)
@@ -89,11 +87,6 @@ Environment: SPLAT_DATA_DIR, the folder holding bunny.ply (default: ../shared/da
 source tree).
 )";
 
-struct UsageError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
 struct Options
 {
   std::vector<std::string> Scenes = { "sphere", "bunny" };
@@ -105,45 +98,6 @@ struct Options
   std::string Output = "output/bench/bench.csv";
   std::string ImageDir;
 };
-
-std::vector<std::string> SplitList(
-  const std::string& option, const std::string& text, const std::vector<std::string>& allowed)
-{
-  std::vector<std::string> items;
-  std::istringstream fields(text);
-  std::string item;
-  while (std::getline(fields, item, ','))
-  {
-    if (std::find(allowed.begin(), allowed.end(), item) == allowed.end())
-    {
-      std::string names;
-      for (const auto& name : allowed)
-      {
-        names += (names.empty() ? "" : ", ") + name;
-      }
-      throw UsageError(option + ": unknown '" + item + "' (choose from " + names + ")");
-    }
-    items.push_back(item);
-  }
-  if (items.empty())
-  {
-    throw UsageError(option + ": the list is empty");
-  }
-  return items;
-}
-
-long long ParseCount(
-  const std::string& option, const std::string& text, long long low, long long high)
-{
-  char* end = nullptr;
-  const long long value = std::strtoll(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || value < low || value > high)
-  {
-    throw UsageError(option + ": expected a whole number from " + std::to_string(low) + " to " +
-      std::to_string(high) + ", got '" + text + "'");
-  }
-  return value;
-}
 
 std::vector<long long> ParseCounts(
   const std::string& option, const std::string& text, long long low, long long high)
@@ -163,12 +117,10 @@ std::vector<long long> ParseCounts(
   return values;
 }
 
-// Long GNU-style options: "--name VALUE" or "--name=VALUE".
 Options ParseCommandLine(int argc, char* argv[])
 {
   Options options;
-  using Handler = std::function<void(const std::string&, const std::string&)>;
-  const std::map<std::string, Handler> handlers = {
+  const std::map<std::string, splatexample::OptionHandler> handlers = {
     { "--scenes",
       [&](const std::string& name, const std::string& value) {
         options.Scenes = SplitList(name, value, { "sphere", "bunny" });
@@ -194,84 +146,28 @@ Options ParseCommandLine(int argc, char* argv[])
       [&](const std::string&, const std::string& value) { options.ImageDir = value; } },
   };
 
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string argument = argv[i];
-    if (argument == "--help")
-    {
-      std::cout << Usage;
-      std::exit(EXIT_SUCCESS);
-    }
-    if (argument == "--quick")
-    {
-      options.Points = { 20000 };
-      options.Sizes = { 256 };
-      options.Frames = 2;
-      continue;
-    }
-    const auto equals = argument.find('=');
-    const std::string name = argument.substr(0, equals);
-    const auto handler = handlers.find(name);
-    if (handler == handlers.end())
-    {
-      throw UsageError("unknown argument '" + name + "' (see --help)");
-    }
-    if (equals == std::string::npos && i + 1 == argc)
-    {
-      throw UsageError(name + " needs a value (see --help)");
-    }
-    handler->second(name, equals == std::string::npos ? argv[++i] : argument.substr(equals + 1));
-  }
+  const std::map<std::string, std::function<void()>> flags = {
+    { "--quick",
+      [&]
+      {
+        options.Points = { 20000 };
+        options.Sizes = { 256 };
+        options.Frames = 2;
+      } },
+  };
+  splatexample::ParseArguments(argc, argv, Usage, handlers, flags);
   return options;
 }
 
-// n points uniformly spread on the unit sphere (Fibonacci lattice) with radial normals and the
-// radius sqrt(4 pi / n) of the sampling spacing, at which the splats just cover the sphere.
-vtkSmartPointer<vtkPolyData> FibonacciSphere(vtkIdType n)
+// n points uniformly spread on the unit sphere with radial normals and the radius of the
+// sampling spacing, at which the splats just cover the sphere.
+vtkSmartPointer<vtkPolyData> UnitSphere(vtkIdType n)
 {
-  vtkNew<vtkPoints> points;
-  points->SetNumberOfPoints(n);
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(n);
-  vtkNew<vtkFloatArray> radii;
-  radii->SetName("Radius");
-  radii->SetNumberOfTuples(n);
-  const double golden = vtkMath::Pi() * (3.0 - std::sqrt(5.0));
-  const float spacing = static_cast<float>(std::sqrt(4.0 * vtkMath::Pi() / n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const double z = 1.0 - (2.0 * i + 1.0) / n;
-    const double r = std::sqrt(1.0 - z * z);
-    const double longitude = golden * i;
-    const double p[3] = { r * std::cos(longitude), r * std::sin(longitude), z };
-    points->SetPoint(i, p);
-    normals->SetTuple(i, p);
-    radii->SetValue(i, spacing);
-  }
-  auto sphere = vtkSmartPointer<vtkPolyData>::New();
-  sphere->SetPoints(points);
-  sphere->GetPointData()->SetNormals(normals);
-  sphere->GetPointData()->AddArray(radii);
-  return sphere;
-}
-
-// The path of bunny.ply, or an empty string when it is absent.
-std::string BunnyFile()
-{
-  std::string folder;
-  if (!vtksys::SystemTools::GetEnv("SPLAT_DATA_DIR", folder) || folder.empty())
-  {
-    folder = vtksys::SystemTools::CollapseFullPath(SPLAT_SOURCE_DIR "/../shared/data");
-  }
-  const std::string file = folder + "/bunny.ply";
-  if (!vtkPLYReader::CanReadFile(file.c_str()))
-  {
-    std::cerr << "splat_bench: bunny skipped: " << file << " is absent or unreadable\n";
-    return std::string();
-  }
-  return file;
+  vtkNew<vtkSurfelSphereSource> sphere;
+  sphere->SetNumberOfPoints(n);
+  sphere->SetRadius(1.0);
+  sphere->Update();
+  return sphere->GetOutput();
 }
 
 // The bunny's vertices as surfels.
@@ -302,13 +198,6 @@ const MapperKind Kinds[] = {
   { "pointgaussian", "vtkPointGaussianMapper", "OpenGL", "disk", false, false },
 };
 
-// vtkPointGaussianMapper draws opaque disks of the splats' world-space radius: the like-for-like
-// surface rendering. Its default Gaussian shader with emissive off blends unsorted translucent
-// blobs whose depth writes hide one another: mostly background shows through.
-const char* const DiskShader = "//VTK::Color::Impl\n"
-                               "float dist2 = dot(offsetVCVSOutput.xy, offsetVCVSOutput.xy);\n"
-                               "if (dist2 > 1.0) { discard; }\n";
-
 vtkSmartPointer<vtkMapper> MakeMapper(const MapperKind& kind, vtkPolyData* surfels)
 {
   if (std::string(kind.Name) == "splat")
@@ -317,15 +206,7 @@ vtkSmartPointer<vtkMapper> MakeMapper(const MapperKind& kind, vtkPolyData* surfe
     mapper->SetInputData(surfels);
     return mapper;
   }
-  vtkNew<vtkPointGaussianMapper> mapper;
-  mapper->SetInputData(surfels);
-  mapper->SetScaleArray("Radius");
-  mapper->SetScaleFactor(1.0);
-  mapper->EmissiveOff();
-  mapper->SetSplatShaderCode(DiskShader);
-  // The disk has radius 1 in splat units: a larger triangle would only shade discarded fragments.
-  mapper->SetTriangleScale(1.0);
-  return mapper;
+  return splatexample::PointGaussianDisks(surfels);
 }
 
 double PeakResidentMegabytes()
@@ -383,33 +264,7 @@ double MillisecondsPerFrame(vtkRenderWindow* window, const Options& options, int
     ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - frameStart).count());
   }
   frames = static_cast<int>(ms.size());
-  std::sort(ms.begin(), ms.end());
-  const std::size_t n = ms.size();
-  return n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
-}
-
-void WritePNG(vtkRenderWindow* window, const std::string& path)
-{
-  vtkNew<vtkWindowToImageFilter> image;
-  image->SetInput(window);
-  image->SetInputBufferTypeToRGB();
-  image->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputConnection(image->GetOutputPort());
-  writer->Write();
-  if (writer->GetErrorCode() != vtkErrorCode::NoError)
-  {
-    throw std::runtime_error("cannot write '" + path + "'");
-  }
-}
-
-void MakeDirectory(const std::string& folder)
-{
-  if (!folder.empty() && !vtksys::SystemTools::MakeDirectory(folder))
-  {
-    throw std::runtime_error("cannot create the folder '" + folder + "'");
-  }
+  return splatexample::Median(ms);
 }
 
 // What one case measured.
@@ -484,7 +339,7 @@ CaseResult MeasureCase(vtkRenderWindow* window, const MapperKind& kind,
     }
     if (!options.ImageDir.empty())
     {
-      WritePNG(window,
+      splatexample::WritePNG(window,
         options.ImageDir + "/" + scene + "-" + std::to_string(result.Points) + "-" +
           std::to_string(size) + "-" + kind.Name + "-" + kind.Setting + ".png");
     }
@@ -572,8 +427,8 @@ int MeasureScene(vtkRenderWindow* window, const std::string& scene, bool closed,
 
 int Run(const Options& options)
 {
-  MakeDirectory(vtksys::SystemTools::GetFilenamePath(options.Output));
-  MakeDirectory(options.ImageDir);
+  splatexample::MakeFolder(vtksys::SystemTools::GetFilenamePath(options.Output));
+  splatexample::MakeFolder(options.ImageDir);
   std::ofstream csv(options.Output);
   if (!csv)
   {
@@ -586,14 +441,9 @@ int Run(const Options& options)
   std::cout << header << std::flush;
   csv << header << std::flush;
 
-  // One window for every case: each window opens its own X display connection, and an X server
-  // (Xvfb) that resets when its last client disconnects can refuse the next window's connection.
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(0.1, 0.1, 0.15);
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->AddRenderer(renderer);
+  // One window for every case (see splatexample::MakeOffscreenWindow); each scene sets its size.
+  vtkSmartPointer<vtkRenderWindow> window = splatexample::MakeOffscreenWindow();
+  window->GetRenderers()->GetFirstRenderer()->SetBackground(0.1, 0.1, 0.15);
 
   // The process's peak memory only grows: the small bunny first, then the spheres by size.
   const auto wants = [&](const char* scene) {
@@ -602,12 +452,16 @@ int Run(const Options& options)
   int rows = 0;
   if (wants("bunny"))
   {
-    const std::string bunny = BunnyFile();
-    if (!bunny.empty())
+    const std::string bunny = splatexample::BunnyFile();
+    if (vtkPLYReader::CanReadFile(bunny.c_str()))
     {
       // The bunny has holes (its base): no backface setting.
       rows += MeasureScene(
         window, "bunny", false, [&]() { return BunnySurfels(bunny); }, options, csv);
+    }
+    else
+    {
+      std::cerr << "splat_bench: bunny skipped: " << bunny << " is absent or unreadable\n";
     }
   }
   if (wants("sphere"))
@@ -615,8 +469,8 @@ int Run(const Options& options)
     for (long long n : options.Points)
     {
       rows += MeasureScene(
-        window, "sphere", true,
-        [n]() { return FibonacciSphere(static_cast<vtkIdType>(n)); }, options, csv);
+        window, "sphere", true, [n]() { return UnitSphere(static_cast<vtkIdType>(n)); }, options,
+        csv);
     }
   }
   std::cerr << "splat_bench: " << rows << " rows; CSV written to "
@@ -627,18 +481,5 @@ int Run(const Options& options)
 
 int main(int argc, char* argv[])
 {
-  try
-  {
-    return Run(ParseCommandLine(argc, argv));
-  }
-  catch (const UsageError& e)
-  {
-    std::cerr << "splat_bench: " << e.what() << "\n";
-    return 2;
-  }
-  catch (const std::exception& e)
-  {
-    std::cerr << "splat_bench: error: " << e.what() << "\n";
-    return EXIT_FAILURE;
-  }
+  return splatexample::RunProgram("splat_bench", [&] { return Run(ParseCommandLine(argc, argv)); });
 }

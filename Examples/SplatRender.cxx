@@ -2,8 +2,11 @@
 // splat_render: renders a point cloud or a mesh (.ply, .vtp, .xyz, .off) as EWA surface splats
 // into a PNG and reports the frame time. Without a file it renders the project's demo scenes.
 // Run `splat_render --help` for the options.
+#include "SplatCommandLine.h"
+#include "SplatExampleUtilities.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
+#include "vtkSurfelSphereSource.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -14,7 +17,6 @@
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPLYReader.h"
-#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -23,7 +25,6 @@
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
 #include "vtkSmartPointer.h"
-#include "vtkWindowToImageFilter.h"
 #include "vtkXMLPolyDataReader.h"
 
 #include <vtksys/SystemTools.hxx>
@@ -34,7 +35,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -48,6 +48,7 @@
 
 namespace
 {
+using splatexample::UsageError;
 using Triple = std::array<double, 3>;
 
 const char* const Usage = R"(Usage: splat_render [OPTIONS] [FILE]
@@ -80,12 +81,6 @@ Options (a value follows as --name VALUE or --name=VALUE):
 Environment: SPLAT_DATA_DIR, the folder holding bunny.ply for the demo scenes
 (default: ../shared/data next to the source tree).
 )";
-
-// Thrown for a bad command line (exit status 2); std::runtime_error for bad data (status 1).
-struct UsageError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
 
 struct Options
 {
@@ -187,104 +182,82 @@ bool HasExtension(const std::string& path, const std::string& extension)
 Options ParseCommandLine(int argc, char* argv[])
 {
   Options options;
-  const std::map<std::string, std::function<void(const std::string&, const std::string&)>>
-    handlers = {
-      { "--output",
-        [&](const std::string& name, const std::string& value)
+  const std::map<std::string, splatexample::OptionHandler> handlers = {
+    { "--output",
+      [&](const std::string& name, const std::string& value)
+      {
+        if (!HasExtension(value, ".png"))
         {
-          if (!HasExtension(value, ".png"))
-          {
-            throw UsageError(
-              name + ": the image is written as PNG, name it *.png (got '" + value + "')");
-          }
-          options.Output = value;
-        } },
-      { "--output-dir",
-        [&](const std::string&, const std::string& value) { options.OutputDir = value; } },
-      { "--size",
-        [&](const std::string& name, const std::string& value)
+          throw UsageError(
+            name + ": the image is written as PNG, name it *.png (got '" + value + "')");
+        }
+        options.Output = value;
+      } },
+    { "--output-dir",
+      [&](const std::string&, const std::string& value) { options.OutputDir = value; } },
+    { "--size",
+      [&](const std::string& name, const std::string& value)
+      {
+        const auto x = value.find('x');
+        if (x == std::string::npos)
         {
-          const auto x = value.find('x');
-          if (x == std::string::npos)
-          {
-            throw UsageError(name + ": expected WxH, e.g. 800x600, got '" + value + "'");
-          }
-          options.Width = ParseCount(name, value.substr(0, x), 1, 16384);
-          options.Height = ParseCount(name, value.substr(x + 1), 1, 16384);
-        } },
-      { "--azimuth",
-        [&](const std::string& name, const std::string& value)
-        { options.Azimuth = ParseNumber(name, value); } },
-      { "--elevation",
-        [&](const std::string& name, const std::string& value)
-        { options.Elevation = ParseNumber(name, value); } },
-      { "--zoom",
-        [&](const std::string& name, const std::string& value)
-        { options.Zoom = ParsePositive(name, value); } },
-      { "--view-up",
-        [&](const std::string& name, const std::string& value)
-        { options.ViewUp = ParseDirection(name, value); } },
-      { "--view-direction",
-        [&](const std::string& name, const std::string& value)
-        { options.ViewDirection = ParseDirection(name, value); } },
-      { "--backend",
-        [&](const std::string& name, const std::string& value)
+          throw UsageError(name + ": expected WxH, e.g. 800x600, got '" + value + "'");
+        }
+        options.Width = ParseCount(name, value.substr(0, x), 1, 16384);
+        options.Height = ParseCount(name, value.substr(x + 1), 1, 16384);
+      } },
+    { "--azimuth",
+      [&](const std::string& name, const std::string& value)
+      { options.Azimuth = ParseNumber(name, value); } },
+    { "--elevation",
+      [&](const std::string& name, const std::string& value)
+      { options.Elevation = ParseNumber(name, value); } },
+    { "--zoom",
+      [&](const std::string& name, const std::string& value)
+      { options.Zoom = ParsePositive(name, value); } },
+    { "--view-up",
+      [&](const std::string& name, const std::string& value)
+      { options.ViewUp = ParseDirection(name, value); } },
+    { "--view-direction",
+      [&](const std::string& name, const std::string& value)
+      { options.ViewDirection = ParseDirection(name, value); } },
+    { "--backend",
+      [&](const std::string& name, const std::string& value)
+      {
+        // The OpenGL backend is not written yet: "auto" resolves to the CPU rasterizer.
+        const std::string backend = vtksys::SystemTools::LowerCase(value);
+        if (backend != "auto" && backend != "cpu")
         {
-          // The OpenGL backend is not written yet: "auto" resolves to the CPU rasterizer.
-          const std::string backend = vtksys::SystemTools::LowerCase(value);
-          if (backend != "auto" && backend != "cpu")
-          {
-            throw UsageError(name + ": unknown backend '" + value +
-              "'; available: auto, cpu (the OpenGL backend is not implemented yet)");
-          }
-        } },
-      { "--radius-scale",
-        [&](const std::string& name, const std::string& value)
-        { options.RadiusScale = ParsePositive(name, value); } },
-      { "--cutoff",
-        [&](const std::string& name, const std::string& value)
-        { options.Cutoff = ParsePositive(name, value); } },
-      { "--color",
-        [&](const std::string& name, const std::string& value)
-        { options.Color = ParseColor(name, value); } },
-      { "--background",
-        [&](const std::string& name, const std::string& value)
-        { options.Background = ParseColor(name, value); } },
-      { "--frames",
-        [&](const std::string& name, const std::string& value)
-        { options.Frames = ParseCount(name, value, 1, 100000); } },
-    };
+          throw UsageError(name + ": unknown backend '" + value +
+            "'; available: auto, cpu (the OpenGL backend is not implemented yet)");
+        }
+      } },
+    { "--radius-scale",
+      [&](const std::string& name, const std::string& value)
+      { options.RadiusScale = ParsePositive(name, value); } },
+    { "--cutoff",
+      [&](const std::string& name, const std::string& value)
+      { options.Cutoff = ParsePositive(name, value); } },
+    { "--color",
+      [&](const std::string& name, const std::string& value)
+      { options.Color = ParseColor(name, value); } },
+    { "--background",
+      [&](const std::string& name, const std::string& value)
+      { options.Background = ParseColor(name, value); } },
+    { "--frames",
+      [&](const std::string& name, const std::string& value)
+      { options.Frames = ParseCount(name, value, 1, 100000); } },
+  };
 
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string argument = argv[i];
-    if (argument == "--help")
-    {
-      std::cout << Usage;
-      std::exit(EXIT_SUCCESS);
-    }
-    if (argument.size() < 2 || argument[0] != '-')
+  splatexample::ParseArguments(argc, argv, Usage, handlers, {},
+    [&](const std::string& argument)
     {
       if (!options.Input.empty())
       {
         throw UsageError("one input file only, got '" + options.Input + "' and '" + argument + "'");
       }
       options.Input = argument;
-      continue;
-    }
-    const auto equals = argument.find('=');
-    const std::string name = argument.substr(0, equals);
-    const auto handler = handlers.find(name);
-    if (handler == handlers.end())
-    {
-      throw UsageError("unknown option '" + name + "' (see --help)");
-    }
-    if (equals == std::string::npos && i + 1 == argc)
-    {
-      throw UsageError(name + " needs a value (see --help)");
-    }
-    handler->second(name, equals == std::string::npos ? argv[++i] : argument.substr(equals + 1));
-  }
+    });
 
   if (options.Input.empty() && options.Output)
   {
@@ -525,13 +498,6 @@ vtkSmartPointer<vtkSurfaceSplatMapper> SplatMapper(vtkPolyData* data, const Opti
   return mapper;
 }
 
-double Median(std::vector<double> values)
-{
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 // `facing` turns the default view about the view up for scenes modeled facing away from +z.
 void SetUpCamera(vtkRenderer* renderer, const Options& options, double facing)
 {
@@ -555,43 +521,12 @@ void SetUpCamera(vtkRenderer* renderer, const Options& options, double facing)
   renderer->ResetCameraClippingRange();
 }
 
-void MakeFolderOf(const std::string& path)
-{
-  const std::string folder = vtksys::SystemTools::GetFilenamePath(path);
-  if (!folder.empty() && !vtksys::SystemTools::MakeDirectory(folder))
-  {
-    throw std::runtime_error("cannot create the folder '" + folder + "'");
-  }
-}
-
-void WritePNG(vtkRenderWindow* window, const std::string& path)
-{
-  vtkNew<vtkWindowToImageFilter> image;
-  image->SetInput(window);
-  image->SetInputBufferTypeToRGB();
-  image->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputConnection(image->GetOutputPort());
-  writer->Write();
-  if (writer->GetErrorCode() != vtkErrorCode::NoError)
-  {
-    throw std::runtime_error("cannot write '" + path + "'");
-  }
-}
-
-// One offscreen window and renderer for every scene: each window opens its own X display
-// connection, and an X server (Xvfb) that resets when its last client disconnects can refuse
-// the next window's connection.
+// One window for every scene (see splatexample::MakeOffscreenWindow).
 vtkSmartPointer<vtkRenderWindow> MakeWindow(const Options& options)
 {
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(options.Background.data());
-  auto window = vtkSmartPointer<vtkRenderWindow>::New();
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
+  vtkSmartPointer<vtkRenderWindow> window = splatexample::MakeOffscreenWindow();
+  window->GetRenderers()->GetFirstRenderer()->SetBackground(options.Background.data());
   window->SetSize(options.Width, options.Height);
-  window->AddRenderer(renderer);
   return window;
 }
 
@@ -600,7 +535,8 @@ vtkSmartPointer<vtkRenderWindow> MakeWindow(const Options& options)
 void RenderScene(vtkRenderWindow* window, vtkSurfaceSplatMapper* mapper, const Options& options,
   const std::string& png, double facing = 0.0)
 {
-  MakeFolderOf(png); // before the work, so that a bad path fails early
+  // Before the work, so that a bad path fails early.
+  splatexample::MakeFolder(vtksys::SystemTools::GetFilenamePath(png));
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   Triple color = options.Color.value_or(Triple{ 0.85, 0.75, 0.6 });
@@ -636,7 +572,7 @@ void RenderScene(vtkRenderWindow* window, vtkSurfaceSplatMapper* mapper, const O
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     mapperMs.push_back(mapper->GetLastRenderTimeInMilliseconds());
   }
-  const double ms = Median(frameMs);
+  const double ms = splatexample::Median(frameMs);
   const vtkIdType splats = mapper->GetNumberOfSplats();
 
   std::cout << std::fixed << std::setprecision(2) << "  backend:       CPU\n"
@@ -644,23 +580,12 @@ void RenderScene(vtkRenderWindow* window, vtkSurfaceSplatMapper* mapper, const O
             << " drawn, " << mapper->GetNumberOfCulledSplats() << " culled, "
             << mapper->GetNumberOfSkippedPoints() << " invalid points skipped)\n"
             << "  ms per frame:  " << ms << " (median of " << options.Frames
-            << " frames, render window); mapper " << Median(mapperMs)
+            << " frames, render window); mapper " << splatexample::Median(mapperMs)
             << " (GetLastRenderTimeInMilliseconds)\n"
             << "  splats per s:  " << std::setprecision(0) << splats / (ms * 1e-3) << "\n";
-  WritePNG(window, png);
+  splatexample::WritePNG(window, png);
   std::cout << "  image:         " << png << " (" << options.Width << "x" << options.Height << ")"
             << std::endl;
-}
-
-// bunny.ply from SPLAT_DATA_DIR, or from ../shared/data next to the source tree.
-std::string BunnyFile()
-{
-  std::string folder;
-  if (!vtksys::SystemTools::GetEnv("SPLAT_DATA_DIR", folder) || folder.empty())
-  {
-    folder = vtksys::SystemTools::CollapseFullPath(SPLAT_SOURCE_DIR "/../shared/data");
-  }
-  return folder + "/bunny.ply";
 }
 
 // Debian's libcgal-demo ships its sample data as one tarball: only the armadillo is unpacked,
@@ -695,39 +620,30 @@ vtkSmartPointer<vtkPolyData> ReadCgalArmadillo()
   return ReadOFF(temporary.Path + "/" + member);
 }
 
-// A sphere of points with radial normals, colored by a smooth scalar field through a
+// A unit sphere of points with radial normals, colored by a smooth scalar field through a
 // cool-to-warm transfer function: shows scalar coloring through the mapper's lookup table.
 const vtkIdType SpherePoints = 200000;
 
 vtkSmartPointer<vtkSurfaceSplatMapper> ColoredSphere(const Options& options)
 {
-  const vtkIdType n = SpherePoints;
-  vtkNew<vtkPoints> points;
-  points->SetNumberOfPoints(n);
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(n);
+  vtkNew<vtkSurfelSphereSource> sphere;
+  sphere->SetNumberOfPoints(SpherePoints);
+  sphere->SetRadius(1.0);
+  sphere->Update();
+  vtkPolyData* cloud = sphere->GetOutput();
   vtkNew<vtkFloatArray> wave;
   wave->SetName("Wave");
-  wave->SetNumberOfTuples(n);
-  const double golden = vtkMath::Pi() * (3.0 - std::sqrt(5.0));
-  for (vtkIdType i = 0; i < n; ++i)
+  wave->SetNumberOfTuples(SpherePoints);
+  for (vtkIdType i = 0; i < SpherePoints; ++i)
   {
-    // Fibonacci lattice: uniform sampling of the unit sphere.
-    const double z = 1.0 - (2.0 * i + 1.0) / n;
-    const double r = std::sqrt(1.0 - z * z);
-    const double longitude = golden * i;
-    const double p[3] = { r * std::cos(longitude), r * std::sin(longitude), z };
-    points->SetPoint(i, p);
-    normals->SetTuple(i, p);
+    double p[3];
+    cloud->GetPoint(i, p);
     wave->SetValue(i, static_cast<float>(std::sin(6.0 * p[0]) * std::cos(4.0 * p[1]) + p[2]));
   }
-  vtkNew<vtkPolyData> cloud;
-  cloud->SetPoints(points);
-  cloud->GetPointData()->SetNormals(normals);
   cloud->GetPointData()->AddArray(wave);
 
+  // vtkSurfelGenerator replaces the source's radii, as for any input, so that --radius-scale
+  // applies.
   auto mapper = SplatMapper(cloud, options);
   const double* range = wave->GetRange();
   vtkNew<vtkColorTransferFunction> coolToWarm;
@@ -747,7 +663,7 @@ int RenderDemoScenes(const Options& options)
   const std::string folder = options.OutputDir.value_or("output/demo");
   vtkSmartPointer<vtkRenderWindow> window = MakeWindow(options);
   int images = 0;
-  const std::string bunny = BunnyFile();
+  const std::string bunny = splatexample::BunnyFile();
   if (vtksys::SystemTools::FileExists(bunny, true))
   {
     std::cout << "bunny: " << bunny << std::endl;
@@ -789,19 +705,10 @@ int RenderFile(const Options& options)
 
 int main(int argc, char* argv[])
 {
-  try
-  {
-    const Options options = ParseCommandLine(argc, argv);
-    return options.Input.empty() ? RenderDemoScenes(options) : RenderFile(options);
-  }
-  catch (const UsageError& e)
-  {
-    std::cerr << "splat_render: " << e.what() << "\n";
-    return 2;
-  }
-  catch (const std::exception& e)
-  {
-    std::cerr << "splat_render: error: " << e.what() << "\n";
-    return EXIT_FAILURE;
-  }
+  return splatexample::RunProgram("splat_render",
+    [&]
+    {
+      const Options options = ParseCommandLine(argc, argv);
+      return options.Input.empty() ? RenderDemoScenes(options) : RenderFile(options);
+    });
 }

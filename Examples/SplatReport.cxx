@@ -16,6 +16,8 @@
 //   supersampling (4x the size, 4x4 blocks averaged); the splats come from vtkSurfelGenerator.
 //
 // Run `splat_report --help` for the options.
+#include "SplatCommandLine.h"
+#include "SplatExampleUtilities.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
 
@@ -28,7 +30,6 @@
 #include "vtkCleanPolyData.h"
 #include "vtkContextScene.h"
 #include "vtkContextView.h"
-#include "vtkErrorCode.h"
 #include "vtkFloatArray.h"
 #include "vtkImageCast.h"
 #include "vtkImageData.h"
@@ -38,7 +39,6 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPLYReader.h"
-#include "vtkPNGWriter.h"
 #include "vtkPen.h"
 #include "vtkPlot.h"
 #include "vtkPlotPoints.h"
@@ -51,6 +51,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkTable.h"
@@ -82,6 +83,9 @@
 
 namespace
 {
+using splatexample::ParseCount;
+using splatexample::UsageError;
+
 const char* const Usage = R"(Usage: splat_report [OPTIONS]
 
 The error-against-run-time report: renders each scene with every quality setting of
@@ -119,11 +123,6 @@ Environment: SPLAT_DATA_DIR, the folder holding bunny.ply (default: ../shared/da
 source tree); SPLAT_OUTPUT_DIR (see --output-dir).
 )";
 
-struct UsageError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
 struct Options
 {
   std::string OutputDir;
@@ -137,19 +136,6 @@ struct Options
   int Samples = 16;
 };
 
-long long ParseCount(const std::string& option, const std::string& text, long long low,
-  long long high)
-{
-  char* end = nullptr;
-  const long long value = std::strtoll(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || value < low || value > high)
-  {
-    throw UsageError(option + ": expected a whole number from " + std::to_string(low) + " to " +
-      std::to_string(high) + ", got '" + text + "'");
-  }
-  return value;
-}
-
 Options ParseCommandLine(int argc, char* argv[])
 {
   Options options;
@@ -158,27 +144,12 @@ Options ParseCommandLine(int argc, char* argv[])
       !outputRoot.empty()
     ? outputRoot + "/report"
     : "output/report";
-  using Handler = std::function<void(const std::string&, const std::string&)>;
-  const std::map<std::string, Handler> handlers = {
+  const std::map<std::string, splatexample::OptionHandler> handlers = {
     { "--output-dir",
       [&](const std::string&, const std::string& value) { options.OutputDir = value; } },
     { "--scenes",
       [&](const std::string& name, const std::string& value) {
-        options.Scenes.clear();
-        std::istringstream fields(value);
-        std::string item;
-        while (std::getline(fields, item, ','))
-        {
-          if (item != "checkerboard" && item != "bunny")
-          {
-            throw UsageError(name + ": unknown '" + item + "' (choose from checkerboard, bunny)");
-          }
-          options.Scenes.push_back(item);
-        }
-        if (options.Scenes.empty())
-        {
-          throw UsageError(name + ": the list is empty");
-        }
+        options.Scenes = splatexample::SplitList(name, value, { "checkerboard", "bunny" });
       } },
     { "--size",
       [&](const std::string& name, const std::string& value) {
@@ -211,88 +182,22 @@ Options ParseCommandLine(int argc, char* argv[])
         options.Samples = static_cast<int>(ParseCount(name, value, 1, 64));
       } },
   };
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string argument = argv[i];
-    if (argument == "--help")
-    {
-      std::cout << Usage;
-      std::exit(EXIT_SUCCESS);
-    }
-    if (argument == "--quick")
-    {
-      options.Width = 256;
-      options.Height = 192;
-      options.Points = 100000;
-      options.Samples = 8;
-      options.Rounds = 1;
-      options.Frames = 2;
-      continue;
-    }
-    const auto equals = argument.find('=');
-    const std::string name = argument.substr(0, equals);
-    const auto handler = handlers.find(name);
-    if (handler == handlers.end())
-    {
-      throw UsageError("unknown argument '" + name + "' (see --help)");
-    }
-    if (equals == std::string::npos && i + 1 == argc)
-    {
-      throw UsageError(name + " needs a value (see --help)");
-    }
-    handler->second(name, equals == std::string::npos ? argv[++i] : argument.substr(equals + 1));
-  }
+  const std::map<std::string, std::function<void()>> flags = {
+    { "--quick",
+      [&] {
+        options.Width = 256;
+        options.Height = 192;
+        options.Points = 100000;
+        options.Samples = 8;
+        options.Rounds = 1;
+        options.Frames = 2;
+      } },
+  };
+  splatexample::ParseArguments(argc, argv, Usage, handlers, flags);
   return options;
 }
 
 //------------------------------------------------------------------------------------------------
-// Settings of vtkSurfaceSplatMapper that arrive over time: used when this build's header has
-// them (detected at compile time), reported as unavailable otherwise.
-template <typename M>
-auto TrySetNumberOfLayers(M* mapper, int layers, int)
-  -> decltype(mapper->SetNumberOfLayers(layers), bool())
-{
-  mapper->SetNumberOfLayers(layers);
-  return true;
-}
-template <typename M>
-bool TrySetNumberOfLayers(M*, int, ...)
-{
-  return false;
-}
-template <typename M>
-auto TryGetNumberOfLayers(M* mapper, int) -> decltype(int(mapper->GetNumberOfLayers()))
-{
-  return static_cast<int>(mapper->GetNumberOfLayers());
-}
-template <typename M>
-int TryGetNumberOfLayers(M*, ...)
-{
-  return -1;
-}
-template <typename M>
-auto TrySetEdgeAntialiasing(M* mapper, bool on, int)
-  -> decltype(mapper->SetEdgeAntialiasing(on), bool())
-{
-  mapper->SetEdgeAntialiasing(on);
-  return true;
-}
-template <typename M>
-bool TrySetEdgeAntialiasing(M*, bool, ...)
-{
-  return false;
-}
-template <typename M>
-auto TryGetEdgeAntialiasing(M* mapper, int) -> decltype(int(bool(mapper->GetEdgeAntialiasing())))
-{
-  return mapper->GetEdgeAntialiasing() ? 1 : 0;
-}
-template <typename M>
-int TryGetEdgeAntialiasing(M*, ...)
-{
-  return -1;
-}
-
 const char* FilterModeName(int mode)
 {
   switch (mode)
@@ -313,64 +218,42 @@ std::string DefaultSettingDescription()
 {
   vtkNew<vtkSurfaceSplatMapper> mapper;
   std::ostringstream text;
-  text << FilterModeName(mapper->GetFilterMode()) << ", cutoff " << mapper->GetCutoff();
-  const int layers = TryGetNumberOfLayers(mapper.Get(), 0);
-  if (layers >= 0)
-  {
-    text << ", " << layers << (layers == 1 ? " layer" : " layers");
-  }
-  const int edge = TryGetEdgeAntialiasing(mapper.Get(), 0);
-  if (edge >= 0)
-  {
-    text << ", edge AA " << (edge ? "on" : "off");
-  }
+  const int layers = mapper->GetNumberOfLayers();
+  text << FilterModeName(mapper->GetFilterMode()) << ", cutoff " << mapper->GetCutoff() << ", "
+       << layers << (layers == 1 ? " layer" : " layers") << ", edge AA "
+       << (mapper->GetEdgeAntialiasing() ? "on" : "off");
   return text.str();
 }
 
 // One quality setting of vtkSurfaceSplatMapper, changed from the default: adding a setting to
-// the report is one entry of SplatSettings(). Apply returns false when this build's mapper lacks
-// the setting (the case is then listed as unavailable).
+// the report is one entry of SplatSettings().
 struct SplatSetting
 {
   std::string Family; // the plot's series
   std::string Name;   // the table's setting column
-  std::function<bool(vtkSurfaceSplatMapper*)> Apply;
+  std::function<void(vtkSurfaceSplatMapper*)> Apply;
 };
 
 std::vector<SplatSetting> SplatSettings()
 {
   std::vector<SplatSetting> settings = {
-    { "cutoff", "cutoff=0.5", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(0.5); return true; } },
-    { "cutoff", "cutoff=2", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(2.0); return true; } },
-    { "cutoff", "cutoff=4", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(4.0); return true; } },
+    { "cutoff", "cutoff=0.5", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(0.5); } },
+    { "cutoff", "cutoff=2", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(2.0); } },
+    { "cutoff", "cutoff=4", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(4.0); } },
     { "filter mode", "filter=circular",
-      [](vtkSurfaceSplatMapper* m) {
-        m->SetFilterMode(vtkSurfaceSplatMapper::CIRCULAR);
-        return true;
-      } },
+      [](vtkSurfaceSplatMapper* m) { m->SetFilterMode(vtkSurfaceSplatMapper::CIRCULAR); } },
     { "filter mode", "filter=unfiltered",
-      [](vtkSurfaceSplatMapper* m) {
-        m->SetFilterMode(vtkSurfaceSplatMapper::UNFILTERED);
-        return true;
-      } },
-    { "layers", "layers=1",
-      [](vtkSurfaceSplatMapper* m) { return TrySetNumberOfLayers(m, 1, 0); } },
-    { "layers", "layers=5",
-      [](vtkSurfaceSplatMapper* m) { return TrySetNumberOfLayers(m, 5, 0); } },
+      [](vtkSurfaceSplatMapper* m) { m->SetFilterMode(vtkSurfaceSplatMapper::UNFILTERED); } },
+    { "layers", "layers=1", [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayers(1); } },
+    { "layers", "layers=5", [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayers(5); } },
   };
   // Edge antialiasing: the opposite of the default.
   vtkNew<vtkSurfaceSplatMapper> probe;
-  const int edge = TryGetEdgeAntialiasing(probe.Get(), 0);
-  const bool flipped = edge != 1;
+  const bool flipped = !probe->GetEdgeAntialiasing();
   settings.push_back({ "edge AA", flipped ? "edge-aa=on" : "edge-aa=off",
-    [flipped](vtkSurfaceSplatMapper* m) { return TrySetEdgeAntialiasing(m, flipped, 0); } });
+    [flipped](vtkSurfaceSplatMapper* m) { m->SetEdgeAntialiasing(flipped); } });
   return settings;
 }
-
-// vtkPointGaussianMapper's fragment shader for opaque disks of radius 1 (in splat units).
-const char* const DiskShader = "//VTK::Color::Impl\n"
-                               "float dist2 = dot(offsetVCVSOutput.xy, offsetVCVSOutput.xy);\n"
-                               "if (dist2 > 1.0) { discard; }\n";
 
 // One rendering to measure.
 struct Case
@@ -381,21 +264,21 @@ struct Case
   std::string Setting; // the table's setting column
   int Threads = 0;     // vtkSMPTools threads; 0 for the OpenGL peer (the driver's own)
   bool IsDefault = false;
-  // Makes the mapper for the surfels; nullptr when this build lacks the setting.
+  // Makes the mapper for the surfels.
   std::function<vtkSmartPointer<vtkMapper>(vtkPolyData*)> Make;
 };
 
 std::vector<Case> Cases(const std::vector<int>& threadCounts)
 {
   const int allThreads = threadCounts.back();
-  const auto splat = [](const std::function<bool(vtkSurfaceSplatMapper*)>& apply) {
+  const auto splat = [](const std::function<void(vtkSurfaceSplatMapper*)>& apply) {
     return [apply](vtkPolyData* surfels) -> vtkSmartPointer<vtkMapper> {
       vtkNew<vtkSurfaceSplatMapper> mapper;
       mapper->SetInputData(surfels);
       mapper->SetRadiusArrayName("Radius");
-      if (apply && !apply(mapper))
+      if (apply)
       {
-        return nullptr;
+        apply(mapper);
       }
       return mapper;
     };
@@ -415,29 +298,21 @@ std::vector<Case> Cases(const std::vector<int>& threadCounts)
   // The peer, on the same points: opaque disks of the surfels' radius (the like-for-like surface
   // rendering), and its default Gaussian blobs with the surfels' variance R^2/2 (sigma R/sqrt 2),
   // emissive off (alpha-blended, unsorted).
-  const auto gaussian = [](bool disk) {
-    return [disk](vtkPolyData* surfels) -> vtkSmartPointer<vtkMapper> {
-      vtkNew<vtkPointGaussianMapper> mapper;
-      mapper->SetInputData(surfels);
-      mapper->SetScaleArray("Radius");
-      mapper->EmissiveOff();
-      if (disk)
-      {
-        mapper->SetScaleFactor(1.0);
-        mapper->SetSplatShaderCode(DiskShader);
-        mapper->SetTriangleScale(1.0);
-      }
-      else
-      {
-        mapper->SetScaleFactor(1.0 / std::sqrt(2.0));
-      }
-      return mapper;
-    };
+  const auto disks = [](vtkPolyData* surfels) -> vtkSmartPointer<vtkMapper> {
+    return splatexample::PointGaussianDisks(surfels);
   };
-  cases.push_back({ "vtkPointGaussianMapper", "OpenGL", "vtkPointGaussianMapper", "disk", 0, false,
-    gaussian(true) });
+  const auto gaussians = [](vtkPolyData* surfels) -> vtkSmartPointer<vtkMapper> {
+    vtkNew<vtkPointGaussianMapper> mapper;
+    mapper->SetInputData(surfels);
+    mapper->SetScaleArray("Radius");
+    mapper->SetScaleFactor(1.0 / std::sqrt(2.0));
+    mapper->EmissiveOff();
+    return mapper;
+  };
+  cases.push_back(
+    { "vtkPointGaussianMapper", "OpenGL", "vtkPointGaussianMapper", "disk", 0, false, disks });
   cases.push_back({ "vtkPointGaussianMapper", "OpenGL", "vtkPointGaussianMapper", "gaussian", 0,
-    false, gaussian(false) });
+    false, gaussians });
   return cases;
 }
 
@@ -876,12 +751,7 @@ vtkSmartPointer<vtkPolyData> CheckerboardSurfels(
 // The bunny scene: the mesh with smooth normals, or nullptr when bunny.ply is absent.
 vtkSmartPointer<vtkPolyData> BunnyMesh()
 {
-  std::string folder;
-  if (!vtksys::SystemTools::GetEnv("SPLAT_DATA_DIR", folder) || folder.empty())
-  {
-    folder = vtksys::SystemTools::CollapseFullPath(SPLAT_SOURCE_DIR "/../shared/data");
-  }
-  const std::string file = folder + "/bunny.ply";
+  const std::string file = splatexample::BunnyFile();
   if (!vtkPLYReader::CanReadFile(file.c_str()))
   {
     std::cerr << "splat_report: bunny scene skipped: " << file << " is absent or unreadable\n";
@@ -938,13 +808,6 @@ void TimeFrames(vtkRenderWindow* window, const Options& options, std::vector<dou
   }
 }
 
-double Median(std::vector<double> values)
-{
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 // vtkSMPTools' thread count before any change: all cores, or VTK_SMP_MAX_THREADS.
 int AllThreads()
 {
@@ -982,29 +845,14 @@ std::vector<Row> MeasureScene(vtkRenderWindow* window, vtkRenderer* renderer,
   std::vector<std::string>& notes)
 {
   const int allThreads = UseThreads(0);
-  std::vector<const Case*> available;
-  for (const Case& c : cases)
-  {
-    if (c.Make(surfels))
-    {
-      available.push_back(&c);
-      continue;
-    }
-    const std::string note = c.Mapper + " " + c.Setting + ": not available in this build";
-    if (std::find(notes.begin(), notes.end(), note) == notes.end())
-    {
-      notes.push_back(note);
-    }
-  }
-
-  std::vector<Row> rows(available.size());
-  std::vector<std::vector<double>> ms(available.size());
+  std::vector<Row> rows(cases.size());
+  std::vector<std::vector<double>> ms(cases.size());
   for (int round = 0; round < options.Rounds; ++round)
   {
     const bool last = round + 1 == options.Rounds;
-    for (std::size_t i = 0; i < available.size(); ++i)
+    for (std::size_t i = 0; i < cases.size(); ++i)
     {
-      const Case& c = *available[i];
+      const Case& c = cases[i];
       vtkSmartPointer<vtkMapper> mapper = c.Make(surfels);
       const int threads = UseThreads(c.Threads > 0 ? c.Threads : 0);
       if (c.Threads > 0 && threads != c.Threads && last)
@@ -1053,8 +901,9 @@ std::vector<Row> MeasureScene(vtkRenderWindow* window, vtkRenderer* renderer,
           std::to_string(splat->GetNumberOfNegligibleSplats()) + " negligible, " +
           std::to_string(splat->GetNumberOfSkippedPoints()) + " invalid points skipped";
       }
-      rows[i] = { scene, &c, c.Threads > 0 ? threads : 0, Median(ms[i]), compared.rms_error,
-        compared.PSNR, comparedAlt.rms_error, comparedAlt.PSNR, false, name + ".png", counts };
+      rows[i] = { scene, &c, c.Threads > 0 ? threads : 0, splatexample::Median(ms[i]),
+        compared.rms_error, compared.PSNR, comparedAlt.rms_error, comparedAlt.PSNR, false,
+        name + ".png", counts };
     }
   }
   renderer->RemoveAllViewProps();
@@ -1275,18 +1124,7 @@ void WritePlot(const std::vector<std::string>& scenes, const std::vector<Row>& r
     }
   }
   view->Render();
-  vtkNew<vtkWindowToImageFilter> capture;
-  capture->SetInput(window);
-  capture->SetInputBufferTypeToRGB();
-  capture->ReadFrontBufferOff();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputConnection(capture->GetOutputPort());
-  writer->Write();
-  if (writer->GetErrorCode() != vtkErrorCode::NoError)
-  {
-    throw std::runtime_error("cannot write '" + path + "'");
-  }
+  splatexample::WritePNG(window, path);
 }
 
 std::string OpenGLRenderer(vtkRenderWindow* window)
@@ -1326,14 +1164,10 @@ int Run(const Options& options)
   const std::vector<Case> cases = Cases(threadCounts);
   std::vector<std::string> notes;
 
-  // One window for every case: each window opens its own X display connection, and an X server
-  // (Xvfb) that resets when its last client disconnects can refuse the next window's connection.
-  vtkNew<vtkRenderer> renderer;
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
+  // One window for every case (see splatexample::MakeOffscreenWindow).
+  vtkSmartPointer<vtkRenderWindow> window = splatexample::MakeOffscreenWindow();
+  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
   window->SetSize(options.Width, options.Height);
-  window->AddRenderer(renderer);
   window->Render();
   const std::string glRenderer = OpenGLRenderer(window);
 
@@ -1522,18 +1356,6 @@ int Run(const Options& options)
 
 int main(int argc, char* argv[])
 {
-  try
-  {
-    return Run(ParseCommandLine(argc, argv));
-  }
-  catch (const UsageError& e)
-  {
-    std::cerr << "splat_report: " << e.what() << "\n";
-    return 2;
-  }
-  catch (const std::exception& e)
-  {
-    std::cerr << "splat_report: error: " << e.what() << "\n";
-    return EXIT_FAILURE;
-  }
+  return splatexample::RunProgram(
+    "splat_report", [&] { return Run(ParseCommandLine(argc, argv)); });
 }
