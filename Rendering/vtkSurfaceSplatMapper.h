@@ -33,8 +33,9 @@
  *
  * Transparency is order-independent within the mapper: a translucent input is splatted into a
  * frame buffer of NumberOfLayers fragments per pixel (paper 000, section 6) and blended back to
- * front; an opaque one uses a single layer. Edge antialiasing multiplies each pixel's coverage,
- * estimated from its summed kernel weights, into its alpha (section 7).
+ * front. Edge antialiasing multiplies each pixel's coverage, estimated from its summed kernel
+ * weights, into its alpha (section 7); the layers then keep what a partly covered edge shows
+ * behind it. An opaque input without edge antialiasing keeps one fragment per pixel.
  *
  * Rendering runs on the multithreaded CPU rasterizer (vtkSurfaceSplatRasterizer, threads from
  * vtkSMPTools, the same image for any number of threads); the image and its depth are then
@@ -98,7 +99,8 @@ public:
 
   ///@{
   /**
-   * Fragments kept per pixel for translucent inputs. Default 3, as in the paper.
+   * Fragments kept per pixel for translucent inputs and for antialiased edges (which show the
+   * surfaces behind them). Default 3, as in the paper.
    */
   void SetNumberOfLayers(int layers);
   int GetNumberOfLayers();
