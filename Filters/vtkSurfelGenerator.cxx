@@ -23,6 +23,7 @@
 #include "vtkStaticPointLocator.h"
 
 #include <algorithm>
+#include <numeric>
 
 #include <cmath>
 #include <vector>
@@ -142,14 +143,47 @@ int vtkSurfelGenerator::RequestData(
   }
   this->UpdateProgress(0.9);
 
-  output->SetPoints(input->GetPoints());
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfTuples(n);
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfTuples(n + 1);
-  for (vtkIdType i = 0; i <= n; ++i)
+  vtkNew<vtkPointData> surfelData;
+  surfelData->PassData(input->GetPointData());
+  surfelData->SetNormals(normals);
+  surfelData->AddArray(radius);
+
+  // A mesh's vertices that no polygon uses (radius 0) do not sample its surface: left out.
+  vtkNew<vtkIdList> kept;
+  for (vtkIdType i = 0; i < n; ++i)
   {
-    if (i < n)
+    if (!mesh || mesh->GetNumberOfPolys() == 0 || radius->GetValue(i) > 0.0f)
+    {
+      kept->InsertNextId(i);
+    }
+  }
+  const vtkIdType m = kept->GetNumberOfIds();
+  if (m == n)
+  {
+    output->SetPoints(input->GetPoints());
+    output->GetPointData()->ShallowCopy(surfelData);
+  }
+  else
+  {
+    vtkNew<vtkIdList> destination;
+    destination->SetNumberOfIds(m);
+    std::iota(destination->begin(), destination->end(), 0);
+    vtkNew<vtkPoints> points;
+    points->SetDataType(input->GetPoints()->GetDataType());
+    points->SetNumberOfPoints(m);
+    points->InsertPoints(destination, kept, input->GetPoints());
+    output->SetPoints(points);
+    output->GetPointData()->CopyAllocate(surfelData, m);
+    output->GetPointData()->CopyData(surfelData, kept, destination);
+  }
+
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfTuples(m);
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfTuples(m + 1);
+  for (vtkIdType i = 0; i <= m; ++i)
+  {
+    if (i < m)
     {
       connectivity->SetValue(i, i);
     }
@@ -158,10 +192,6 @@ int vtkSurfelGenerator::RequestData(
   vtkNew<vtkCellArray> vertices;
   vertices->SetData(offsets, connectivity);
   output->SetVerts(vertices);
-
-  output->GetPointData()->PassData(input->GetPointData());
-  output->GetPointData()->SetNormals(normals);
-  output->GetPointData()->AddArray(radius);
   return 1;
 }
 

@@ -5,7 +5,8 @@
  *
  * vtkSurfelGenerator prepares any vtkPointSet for vtkSurfaceSplatMapper. Its output is a
  * vtkPolyData with one vertex per input point, the input's point data, point normals and a
- * per-point radius array (RadiusArrayName, default "Radius").
+ * per-point radius array (RadiusArrayName, default "Radius"). A polygonal mesh's vertices that
+ * no polygon uses are not samples of its surface and are left out.
  *
  * Normals: the input's point normals when it has them; otherwise, for a polygonal mesh, the
  * averaged polygon normals (vtkPolyDataNormals); otherwise, for a point cloud, a PCA fit over the

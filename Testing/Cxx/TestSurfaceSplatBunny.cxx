@@ -42,10 +42,13 @@ int main(int argc, char* argv[])
   renderer->GetActiveCamera()->Zoom(1.3);
   window->Render();
 
-  if (mapper->GetNumberOfRenderedSplats() < 30000)
+  // bun_zipper.ply has 1113 vertices that no triangle uses: the generator leaves them out, so
+  // every splat the mapper gets is valid.
+  if (mapper->GetNumberOfRenderedSplats() < 30000 || mapper->GetNumberOfSkippedPoints() != 0)
   {
-    std::cerr << "Expected the bunny's splats drawn, got " << mapper->GetNumberOfRenderedSplats()
-              << ".\n";
+    std::cerr << "Expected the bunny's splats drawn and none skipped, got "
+              << mapper->GetNumberOfRenderedSplats() << " drawn and "
+              << mapper->GetNumberOfSkippedPoints() << " skipped.\n";
     return EXIT_FAILURE;
   }
   return vtkRegressionTestImage(window) == vtkTesting::FAILED ? EXIT_FAILURE : EXIT_SUCCESS;
