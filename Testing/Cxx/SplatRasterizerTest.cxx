@@ -477,3 +477,79 @@ TEST(SurfaceSplatRasterizer, DiskEdgeHasPartialCoverageOnly)
     }
   }
 }
+
+// Data far from the origin renders like data at the origin: the setup runs in double precision
+// relative to the eye, the per-pixel loop in single precision relative to each splat.
+TEST(SurfaceSplatRasterizer, FarFromTheOriginRendersTheSame)
+{
+  auto texture = [](double x, double y)
+  { return glm::vec3(static_cast<float>(0.5 + 0.4 * std::sin(60.0 * x)), 0.5f,
+      static_cast<float>(0.5 + 0.4 * std::cos(45.0 * y))); };
+  const SurfelGrid near(121, 121, 0.005, 0.005, 0.005, 0.005, texture);
+  std::vector<splat::Light> lights(1);
+  splat::Material material;
+  material.Specular = glm::vec3(0.3f);
+  material.SpecularPower = 20.0f;
+  std::vector<std::uint8_t> images[2];
+  for (int far = 0; far < 2; ++far)
+  {
+    const glm::dvec3 offset = far ? glm::dvec3(3.0e6, -2.0e6, 1.0e6) : glm::dvec3(0.0);
+    SurfelGrid grid = near;
+    for (std::size_t i = 0; i < grid.Positions.size(); ++i)
+    {
+      grid.Positions[i] += offset[i % 3];
+    }
+    vtkSurfaceSplatRasterizer::Camera camera = FrontoParallelCamera(1.0, 128);
+    camera.ModelToEye = glm::lookAt(offset + glm::dvec3(0.2, 0.1, 1.0), offset,
+      glm::dvec3(0.0, 1.0, 0.0));
+    vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+    rasterizer->Render(grid.View(), camera, lights, material);
+    images[far] = rasterizer->GetColors();
+  }
+  int differing = 0;
+  for (std::size_t i = 0; i < images[0].size(); ++i)
+  {
+    ASSERT_LE(std::abs(images[0][i] - images[1][i]), 2) << "byte " << i;
+    differing += images[0][i] != images[1][i];
+  }
+  EXPECT_LT(differing, static_cast<int>(images[0].size() / 100));
+}
+
+// Extreme splats: a screen-filling one right in front of the camera, one crossing the eye's
+// plane and one with a radius of 1e-12 give finite, bounded work and no NaN pixel.
+TEST(SurfaceSplatRasterizer, ExtremeSplatsStayFiniteAndBounded)
+{
+  SurfelGrid grid(3, 0.1, glm::vec3(0.8f));
+  // 0: huge and close, 1: crossing z = camera plane, 2: microscopic.
+  const double positions[3][3] = { { 0.0, 0.0, 1.5 }, { 0.0, 0.5, 2.0 }, { 0.1, 0.0, 0.0 } };
+  const float radii[3] = { 1e3f, 5.0f, 1e-12f };
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      grid.Positions[3 * i + c] = positions[i][c];
+    }
+    grid.Axes0[3 * i] = radii[i];
+    grid.Axes1[3 * i + 1] = radii[i];
+  }
+  grid.Normals[3 * 1 + 1] = 1.0f; // the crossing splat stands edge-on across the eye's plane
+  grid.Normals[3 * 1 + 2] = 0.0f;
+  grid.Axes1[3 * 1 + 1] = 0.0f;
+  grid.Axes1[3 * 1 + 2] = 5.0f;
+  vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+  const int size = 64;
+  rasterizer->Render(grid.View(), FrontoParallelCamera(2.0, size), std::vector<splat::Light>(1),
+    splat::Material());
+  // Every pixel is written at most once per splat.
+  EXPECT_LE(rasterizer->GetFragmentCount(), static_cast<vtkIdType>(9) * size * size);
+  for (float depth : rasterizer->GetDepths())
+  {
+    ASSERT_TRUE(depth >= 0.0f && depth <= 1.0f);
+  }
+  int covered = 0;
+  for (std::size_t pixel = 0; pixel < rasterizer->GetColors().size() / 4; ++pixel)
+  {
+    covered += rasterizer->GetColors()[4 * pixel + 3] > 0;
+  }
+  EXPECT_EQ(covered, size * size); // the screen-filling splat covers everything
+}
