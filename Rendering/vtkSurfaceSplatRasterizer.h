@@ -158,6 +158,8 @@ public:
    */
   std::vector<float> GetWeights() const;
 
+  // A pixel's surface and a splat after setup; declared here so that the implementation's
+  // helper functions can name them.
   struct Fragment;
   struct ScreenSplat;
 
