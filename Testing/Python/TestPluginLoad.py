@@ -21,28 +21,11 @@ import os
 import sys
 import traceback
 
-failures = []
-
-
-def check(condition, message):
-    status = "ok  " if condition else "FAIL"
-    print("%s %s" % (status, message), flush=True)
-    if not condition:
-        failures.append(message)
-    return condition
+from splat_checks import check, exit_status, info_value
 
 
 def close(a, b, tol=1e-12):
     return a is not None and b is not None and math.isclose(a, b, rel_tol=tol, abs_tol=tol)
-
-
-def info_value(proxy, info_name):
-    """Value of an information-only property, read from the server-side VTK object."""
-    proxy.UpdatePropertyInformation()
-    prop = proxy.GetProperty(info_name)
-    if prop is None or prop.GetNumberOfElements() == 0:
-        return None
-    return prop.GetElement(0)
 
 
 def test_mapper(servermanager):
@@ -220,11 +203,7 @@ def main():
             traceback.print_exc()
             check(False, "exception (see above)")
 
-    if failures:
-        print("%d check(s) failed" % len(failures))
-        return 1
-    print("all checks passed")
-    return 0
+    return exit_status()
 
 
 if __name__ == "__main__":

@@ -13,22 +13,7 @@ import argparse
 import os
 import sys
 
-failures = []
-
-
-def check(condition, message):
-    print("%s %s" % ("ok  " if condition else "FAIL", message), flush=True)
-    if not condition:
-        failures.append(message)
-    return condition
-
-
-def info_value(smproxy, name):
-    smproxy.UpdatePropertyInformation()
-    prop = smproxy.GetProperty(name)
-    if prop is None or prop.GetNumberOfElements() == 0:
-        return None
-    return prop.GetElement(0)
+from splat_checks import check, exit_status, info_value
 
 
 def main():
@@ -105,11 +90,7 @@ def main():
     writer.Write()
     print("image: %s" % path)
 
-    if failures:
-        print("%d check(s) failed" % len(failures))
-        return 1
-    print("all checks passed")
-    return 0
+    return exit_status()
 
 
 if __name__ == "__main__":
