@@ -62,7 +62,18 @@ void vtkOpenGLImageDepthCompositor::Draw(vtkRenderer* renderer, int width, int h
     const_cast<void*>(static_cast<const void*>(rgba)));
   this->DepthTexture->Create2DFromRaw(width, height, 1, VTK_FLOAT,
     const_cast<void*>(static_cast<const void*>(depth)));
+  this->DrawTextures(renderer, this->ColorTexture, this->DepthTexture, blending);
+}
 
+//------------------------------------------------------------------------------
+void vtkOpenGLImageDepthCompositor::DrawTextures(
+  vtkRenderer* renderer, vtkTextureObject* color, vtkTextureObject* depth, Blending blending)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
+  {
+    return;
+  }
   if (!this->Quad)
   {
     this->Quad.reset(new vtkOpenGLQuadHelper(window, nullptr, CompositeFragmentShader, ""));
@@ -93,13 +104,13 @@ void vtkOpenGLImageDepthCompositor::Draw(vtkRenderer* renderer, int width, int h
   state->vtkglDepthFunc(GL_LEQUAL);
   state->vtkglDepthMask(blending == Blending::Opaque ? GL_TRUE : GL_FALSE);
 
-  this->ColorTexture->Activate();
-  this->DepthTexture->Activate();
-  this->Quad->Program->SetUniformi("splatColor", this->ColorTexture->GetTextureUnit());
-  this->Quad->Program->SetUniformi("splatDepth", this->DepthTexture->GetTextureUnit());
+  color->Activate();
+  depth->Activate();
+  this->Quad->Program->SetUniformi("splatColor", color->GetTextureUnit());
+  this->Quad->Program->SetUniformi("splatDepth", depth->GetTextureUnit());
   this->Quad->Render();
-  this->ColorTexture->Deactivate();
-  this->DepthTexture->Deactivate();
+  color->Deactivate();
+  depth->Deactivate();
 }
 
 //------------------------------------------------------------------------------

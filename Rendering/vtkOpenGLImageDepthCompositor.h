@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkOpenGLImageDepthCompositor
- * @brief   draws a CPU-rendered RGBA image with per-pixel depth into the current VTK framebuffer
+ * @brief   draws a rendered RGBA image with per-pixel depth into the current VTK framebuffer
  *
- * The CPU backends render splats into memory; this class puts that image into the renderer's
- * viewport as a full-viewport quad that writes gl_FragDepth and is depth-tested against what is
+ * The CPU backends render splats into memory, the OpenGL backends into textures; this class
+ * puts that image into the renderer's viewport as a full-viewport quad that writes gl_FragDepth and is depth-tested against what is
  * already there, so splats and ordinary actors occlude each other in either drawing order. The
  * colors are premultiplied by alpha and blended over the framebuffer (partly covered edge
  * pixels, translucent splats). Pixels with alpha 0 are discarded. It also reads the scene's
@@ -49,6 +49,13 @@ public:
    */
   void Draw(vtkRenderer* renderer, int width, int height, const std::uint8_t* rgba,
     const float* depth, Blending blending);
+
+  /**
+   * Draws textures of the viewport's size: premultiplied RGBA and window-space depth (the
+   * OpenGL backends' results, which stay on the GPU).
+   */
+  void DrawTextures(
+    vtkRenderer* renderer, vtkTextureObject* color, vtkTextureObject* depth, Blending blending);
 
   /**
    * The window-space depth of the renderer's viewport as drawn so far, rows from the bottom.

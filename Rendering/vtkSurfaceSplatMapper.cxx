@@ -3,12 +3,14 @@
 
 #include "SplatSurfelKernel.h"
 #include "vtkOpenGLImageDepthCompositor.h"
+#include "vtkOpenGLSurfaceSplatRasterizer.h"
 #include "vtkSurfaceSplatRasterizer.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkHardwareSelector.h"
 #include "vtkInformation.h"
 #include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkLight.h"
@@ -43,6 +45,7 @@ struct vtkSurfaceSplatMapper::SurfelArrays
   std::vector<float> Axes1;
   std::vector<float> Colors;
   std::vector<float> Opacities; // empty when every opacity is 1
+  std::vector<vtkIdType> PointIds; // the input point of each surfel, for picking
   bool ColorsFromScalars = false;
   vtkTimeStamp BuildTime;
 
@@ -73,6 +76,20 @@ glm::dmat4 ToGlm(vtkMatrix4x4* m)
     }
   }
   return result;
+}
+
+// The actor's model-to-eye and the camera's projection over the renderer's viewport.
+vtkSurfaceSplatRasterizer::Camera ViewOf(vtkRenderer* ren, vtkActor* actor)
+{
+  int width, height, originX, originY;
+  ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkSurfaceSplatRasterizer::Camera view;
+  view.ModelToEye = ToGlm(camera->GetModelViewTransformMatrix()) * ToGlm(actor->GetMatrix());
+  view.EyeToClip =
+    ToGlm(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1.0, 1.0));
+  view.Viewport = glm::ivec2(width, height);
+  return view;
 }
 
 // The renderer's lights in eye coordinates, as VTK's OpenGL2 polydata shader sees them.
@@ -271,12 +288,16 @@ double vtkSurfaceSplatMapper::GetCoverageThreshold()
 //------------------------------------------------------------------------------
 vtkIdType vtkSurfaceSplatMapper::GetNumberOfRenderedSplats()
 {
-  return this->Rasterizer->GetSplattedCount();
+  return this->LastBackend == vtkSplatBackend::OPENGL ? -1 : this->Rasterizer->GetSplattedCount();
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkSurfaceSplatMapper::GetNumberOfCulledSplats()
 {
+  if (this->LastBackend == vtkSplatBackend::OPENGL)
+  {
+    return -1;
+  }
   return this->Rasterizer->GetFrustumCulledCount() + this->Rasterizer->GetBackfaceCulledCount() +
     this->Rasterizer->GetNegligibleCount();
 }
@@ -284,19 +305,19 @@ vtkIdType vtkSurfaceSplatMapper::GetNumberOfCulledSplats()
 //------------------------------------------------------------------------------
 vtkIdType vtkSurfaceSplatMapper::GetNumberOfFrustumCulledSplats()
 {
-  return this->Rasterizer->GetFrustumCulledCount();
+  return this->LastBackend == vtkSplatBackend::OPENGL ? -1 : this->Rasterizer->GetFrustumCulledCount();
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkSurfaceSplatMapper::GetNumberOfBackfaceCulledSplats()
 {
-  return this->Rasterizer->GetBackfaceCulledCount();
+  return this->LastBackend == vtkSplatBackend::OPENGL ? -1 : this->Rasterizer->GetBackfaceCulledCount();
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkSurfaceSplatMapper::GetNumberOfNegligibleSplats()
 {
-  return this->Rasterizer->GetNegligibleCount();
+  return this->LastBackend == vtkSplatBackend::OPENGL ? -1 : this->Rasterizer->GetNegligibleCount();
 }
 
 //------------------------------------------------------------------------------
@@ -371,6 +392,7 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
   s.Axes1.clear();
   s.Colors.clear();
   s.Opacities.clear();
+  s.PointIds.clear();
   bool translucent = false;
   for (auto* v : { &s.Normals, &s.Axes0, &s.Axes1, &s.Colors })
   {
@@ -429,6 +451,7 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
     const double opacity = actorOpacity * (rgba[3] / 255.0) *
       (std::isnan(pointOpacity) ? 1.0 : std::min(std::max(pointOpacity, 0.0), 1.0));
     s.Opacities.push_back(static_cast<float>(opacity));
+    s.PointIds.push_back(i);
     translucent = translucent || opacity < 1.0;
     for (int c = 0; c < 3; ++c)
     {
@@ -472,30 +495,33 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
   }
   this->InvokeEvent(vtkCommand::EndEvent, nullptr);
   input = this->GetInput();
-  // Hardware picking of splats arrives with the OpenGL backend; they are not drawn into
-  // selection passes.
-  if (!input || input->GetNumberOfPoints() == 0 || ren->GetSelector() ||
-    !this->UpdateSurfels(actor))
+  if (!input || input->GetNumberOfPoints() == 0 || !this->UpdateSurfels(actor))
   {
     return;
   }
 
-  int width, height, originX, originY;
-  ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
-  vtkCamera* camera = ren->GetActiveCamera();
-  vtkSurfaceSplatRasterizer::Camera view;
-  const glm::dmat4 worldToEye = ToGlm(camera->GetModelViewTransformMatrix());
-  view.ModelToEye = worldToEye * ToGlm(actor->GetMatrix());
-  view.EyeToClip =
-    ToGlm(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1.0, 1.0));
-  view.Viewport = glm::ivec2(width, height);
-
   vtkProperty* property = actor->GetProperty();
+  this->NumberOfSplats = static_cast<vtkIdType>(this->Surfels->Normals.size() / 3);
+  // Both backends read the settings from the CPU rasterizer; it has no approximate filter.
+  this->Rasterizer->SetFilter(this->FilterMode == APPROXIMATE
+      ? splat::KernelFilter::EWA
+      : static_cast<splat::KernelFilter>(this->FilterMode));
+  this->Rasterizer->SetBackfaceCulling(property->GetBackfaceCulling());
+
+  // Picking draws with OpenGL whatever the backend: the selector reads the framebuffer.
+  if (vtkHardwareSelector* selector = ren->GetSelector())
+  {
+    this->RenderSelection(ren, actor, selector);
+    return;
+  }
+
+  const vtkSurfaceSplatRasterizer::Camera view = ViewOf(ren, actor);
+  const glm::dmat4 worldToEye = ToGlm(ren->GetActiveCamera()->GetModelViewTransformMatrix());
+
+  this->LastBackend = vtkSplatBackend::Resolve(this->Backend, ren->GetRenderWindow());
   const std::vector<splat::Light> lights =
     property->GetLighting() ? EyeLights(ren, worldToEye) : std::vector<splat::Light>();
-  this->NumberOfSplats = static_cast<vtkIdType>(this->Surfels->Normals.size() / 3);
-  this->Rasterizer->SetFilter(static_cast<splat::KernelFilter>(this->FilterMode));
-  this->Rasterizer->SetBackfaceCulling(property->GetBackfaceCulling());
+  const splat::Material material = MaterialOf(property, this->Surfels->ColorsFromScalars);
   // Translucent splats behind opaque geometry drawn before them must be dropped fragment by
   // fragment, not only where the nearest one is hidden: they need the scene's depth.
   const bool translucent = !this->Surfels->Opacities.empty();
@@ -504,18 +530,53 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
   {
     this->Compositor->ReadDepths(ren, sceneDepths);
   }
-  this->Rasterizer->SetSceneDepths(std::move(sceneDepths));
-  this->Rasterizer->Render(
-    this->Surfels->View(), view, lights, MaterialOf(property, this->Surfels->ColorsFromScalars));
   using Blending = vtkOpenGLImageDepthCompositor::Blending;
   const Blending blending = !translucent ? Blending::Opaque
     : InOrderIndependentPass(actor)      ? Blending::OrderIndependent
                                          : Blending::Translucent;
-  this->Compositor->Draw(ren, width, height, this->Rasterizer->GetColors().data(),
-    this->Rasterizer->GetDepths().data(), blending);
+  if (this->LastBackend == vtkSplatBackend::OPENGL)
+  {
+    this->OpenGLRasterizer->SetApproximateFilter(this->FilterMode == APPROXIMATE);
+    this->OpenGLRasterizer->SetSurfels(
+      this->Surfels->View(), this->Surfels->BuildTime.GetMTime());
+    this->OpenGLRasterizer->Render(ren, view, lights, material, this->Rasterizer, sceneDepths);
+    this->Compositor->DrawTextures(ren, this->OpenGLRasterizer->GetColorTexture(),
+      this->OpenGLRasterizer->GetDepthTexture(), blending);
+  }
+  else
+  {
+    this->Rasterizer->SetSceneDepths(std::move(sceneDepths));
+    this->Rasterizer->Render(this->Surfels->View(), view, lights, material);
+    this->Compositor->Draw(ren, view.Viewport.x, view.Viewport.y,
+      this->Rasterizer->GetColors().data(),
+      this->Rasterizer->GetDepths().data(), blending);
+  }
 
   this->LastRenderTimeInMilliseconds =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::RenderSelection(
+  vtkRenderer* ren, vtkActor* actor, vtkHardwareSelector* selector)
+{
+  const std::vector<vtkIdType>& pointIds = this->Surfels->PointIds;
+  selector->BeginRenderProp();
+  if (selector->GetCurrentPass() == vtkHardwareSelector::COMPOSITE_INDEX_PASS)
+  {
+    selector->RenderCompositeIndex(1);
+  }
+  if (!pointIds.empty())
+  {
+    // The selector needs the largest id to know whether the high 24 bits are needed.
+    selector->UpdateMaximumPointId(pointIds.back());
+    selector->UpdateMaximumCellId(pointIds.back());
+  }
+  this->OpenGLRasterizer->SetApproximateFilter(this->FilterMode == APPROXIMATE);
+  this->OpenGLRasterizer->SetSurfels(this->Surfels->View(), this->Surfels->BuildTime.GetMTime());
+  this->OpenGLRasterizer->RenderSelection(
+    ren, selector, ViewOf(ren, actor), this->Rasterizer, pointIds);
+  selector->EndRenderProp();
 }
 
 //------------------------------------------------------------------------------
@@ -564,6 +625,7 @@ void vtkSurfaceSplatMapper::ComputeBounds()
 void vtkSurfaceSplatMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Compositor->ReleaseGraphicsResources(window);
+  this->OpenGLRasterizer->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -584,6 +646,9 @@ void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TangentAxis1ArrayName: "
      << (this->TangentAxis1ArrayName ? this->TangentAxis1ArrayName : "(none)") << "\n";
   os << indent << "FilterMode: " << this->FilterMode << "\n";
+  os << indent << "Backend: " << vtkSplatBackend::GetBackendAsString(this->Backend) << "\n";
+  os << indent << "LastBackend: " << vtkSplatBackend::GetBackendAsString(this->LastBackend)
+     << "\n";
   os << indent << "Cutoff: " << this->Rasterizer->GetCutoff() << "\n";
   os << indent << "DepthThreshold: " << this->Rasterizer->GetDepthThreshold() << "\n";
   os << indent << "NumberOfSplats: " << this->NumberOfSplats << "\n";

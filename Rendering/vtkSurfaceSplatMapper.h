@@ -37,9 +37,15 @@
  * weights, into its alpha (section 7); the layers then keep what a partly covered edge shows
  * behind it. An opaque input without edge antialiasing keeps one fragment per pixel.
  *
- * Rendering runs on the multithreaded CPU rasterizer (vtkSurfaceSplatRasterizer, threads from
- * vtkSMPTools, the same image for any number of threads); the image and its depth are then
- * drawn into the OpenGL framebuffer.
+ * Two backends render the same splats (SetBackend): the multithreaded CPU rasterizer
+ * (vtkSurfaceSplatRasterizer, threads from vtkSMPTools, the same image for any number of
+ * threads) and OpenGL shaders (vtkOpenGLSurfaceSplatRasterizer: visibility, attribute and
+ * normalization passes, layers peeled front to back). AUTO, the default, picks OpenGL on a
+ * hardware GPU and the CPU under a software OpenGL renderer such as llvmpipe. Either result is
+ * drawn into the OpenGL framebuffer with its depth.
+ *
+ * Hardware picking (vtkHardwareSelector, e.g. through vtkRenderer::PickProp or
+ * vtkRenderedAreaPicker) selects splats by the id of their input point, with either backend.
  *
  * @sa vtkSurfaceSplatRasterizer vtkSurfelGenerator vtkPointGaussianMapper
  */
@@ -49,11 +55,14 @@
 #include "SplatRenderingModule.h" // For export macro
 #include "vtkNew.h"              // For vtkNew
 #include "vtkPolyDataMapper.h"
+#include "vtkSplatBackend.h" // For the backend enumeration
 
 #include <memory> // For std::unique_ptr
 
-// Not wrapped: the rasterizer's interface is GLM types.
+class vtkHardwareSelector;
+// Not wrapped: the rasterizers' interface is GLM types.
 class vtkOpenGLImageDepthCompositor;
+class vtkOpenGLSurfaceSplatRasterizer;
 class vtkSurfaceSplatRasterizer;
 
 class SPLATRENDERING_EXPORT vtkSurfaceSplatMapper : public vtkPolyDataMapper
@@ -143,19 +152,42 @@ public:
     EWA = 0,        ///< exact screen-space EWA: warped basis function convolved with the low-pass
     CIRCULAR = 1,   ///< circles with the major axis of the EWA ellipse: blurs magnified areas
     UNFILTERED = 2, ///< warped ellipses without the low-pass: aliases minified areas
+    APPROXIMATE = 3 ///< OpenGL only: the larger of the object-space kernel and the low-pass
   };
 
   ///@{
   /**
-   * Screen-space filter: EWA (default), CIRCULAR or UNFILTERED. The last two are the baselines
-   * of the error-against-time report.
+   * Screen-space filter: EWA (default), CIRCULAR, UNFILTERED or APPROXIMATE. CIRCULAR and
+   * UNFILTERED are the baselines of the error-against-time report. APPROXIMATE is the cheaper
+   * filter of GPU splatting (Botsch et al. 2005): per fragment, the larger of the object-space
+   * Gaussian where the pixel's ray meets the tangent plane and the screen-space low-pass; the
+   * OpenGL backend only, the CPU backend draws EWA instead.
    */
-  vtkSetClampMacro(FilterMode, int, EWA, UNFILTERED);
+  vtkSetClampMacro(FilterMode, int, EWA, APPROXIMATE);
   vtkGetMacro(FilterMode, int);
   void SetFilterModeToEWA() { this->SetFilterMode(EWA); }
   void SetFilterModeToCircular() { this->SetFilterMode(CIRCULAR); }
   void SetFilterModeToUnfiltered() { this->SetFilterMode(UNFILTERED); }
+  void SetFilterModeToApproximate() { this->SetFilterMode(APPROXIMATE); }
   ///@}
+
+  ///@{
+  /**
+   * The backend: vtkSplatBackend::AUTO (default: OpenGL on a hardware GPU, the CPU under a
+   * software OpenGL renderer), vtkSplatBackend::CPU or vtkSplatBackend::OPENGL.
+   */
+  vtkSetClampMacro(Backend, int, vtkSplatBackend::AUTO, vtkSplatBackend::OPENGL);
+  vtkGetMacro(Backend, int);
+  void SetBackendToAuto() { this->SetBackend(vtkSplatBackend::AUTO); }
+  void SetBackendToCPU() { this->SetBackend(vtkSplatBackend::CPU); }
+  void SetBackendToOpenGL() { this->SetBackend(vtkSplatBackend::OPENGL); }
+  ///@}
+
+  /**
+   * The backend that drew the last render: vtkSplatBackend::CPU or OPENGL (AUTO before the
+   * first render).
+   */
+  vtkGetMacro(LastBackend, int);
 
   ///@{
   /**
@@ -172,6 +204,8 @@ public:
    * What the last render did: points given to the rasterizer; splats drawn; splats left out
    * (in total, and outside the frustum, back-facing with backface culling, or negligible);
    * input points skipped as invalid; and the wall-clock time of the render in milliseconds.
+   * The OpenGL backend leaves splats out in its vertex shader without counting them: the
+   * splat counts are -1 after an OpenGL render.
    */
   vtkGetMacro(NumberOfSplats, vtkIdType);
   vtkIdType GetNumberOfRenderedSplats();
@@ -190,6 +224,11 @@ public:
 
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
+  /**
+   * Splats can be picked by point with vtkHardwareSelector.
+   */
+  bool GetSupportsSelection() override { return true; }
+
 protected:
   vtkSurfaceSplatMapper();
   ~vtkSurfaceSplatMapper() override;
@@ -206,18 +245,26 @@ protected:
    */
   bool UpdateSurfels(vtkActor* actor);
 
+  /**
+   * Draws the splats into the selector's current pass.
+   */
+  void RenderSelection(vtkRenderer* ren, vtkActor* actor, vtkHardwareSelector* selector);
+
   double Radius = 1.0;
   char* RadiusArrayName = nullptr;
   char* OpacityArrayName = nullptr;
   char* TangentAxis0ArrayName = nullptr;
   char* TangentAxis1ArrayName = nullptr;
   int FilterMode = EWA;
+  int Backend = vtkSplatBackend::AUTO;
+  int LastBackend = vtkSplatBackend::AUTO;
 
   vtkIdType NumberOfSplats = 0;
   vtkIdType NumberOfSkippedPoints = 0;
   double LastRenderTimeInMilliseconds = 0.0;
 
   vtkNew<vtkSurfaceSplatRasterizer> Rasterizer;
+  vtkNew<vtkOpenGLSurfaceSplatRasterizer> OpenGLRasterizer;
   vtkNew<vtkOpenGLImageDepthCompositor> Compositor;
 
 private:

@@ -94,6 +94,12 @@ public:
   void SetSceneDepths(std::vector<float> depths) { this->SceneDepths = std::move(depths); }
 
   /**
+   * The summed kernel weight at which a pixel counts as fully covered: the coverage threshold
+   * scaled to the cutoff's share of kernel mass.
+   */
+  float FullCoverageWeight() const;
+
+  /**
    * The screen-space filter: exact EWA (default), circular or unfiltered (paper 000, figure 8).
    */
   void SetFilter(splat::KernelFilter filter) { this->Filter = filter; }
@@ -187,7 +193,6 @@ protected:
     const ScreenSplat& s) const;
   /// Shaded premultiplied color and alpha (coverage included) of a fragment at pixel (x, y).
   glm::vec4 ShadeFragment(const Fragment& f, int x, int y) const;
-  float FullCoverageWeight() const;
   void Resolve();
 
   double Cutoff = 1.0;

@@ -1,0 +1,119 @@
+//VTK::System::Dec
+// SPDX-License-Identifier: BSD-3-Clause
+// The per-fragment work of the splatting passes (An and Zhou, section 4): intersect the pixel's
+// view ray with the splat's tangent plane (exact for large and near splats, where the affine
+// approximation is not), reject the fragment outside the kernel's cutoff, and write the
+// intersection's linear eye depth, so that the visibility offset is the same distance near and
+// far. The weight is the screen-space EWA kernel of paper 000 eq. (6), set up once per splat.
+//   pass 0, visibility: depth of the intersection plus the splat's threshold, no color;
+//   pass 1, attributes: weight-times-color, weight, weight-times-normal, weight-times-opacity
+//           and weight-times-depth, added up over the splats within the threshold of pass 0;
+//   pass 2, selection: the hardware selector's color, at the window depth of the intersection.
+
+flat in vec2 splatCenter;
+flat in vec3 splatConic;
+flat in float splatAmplitude;
+flat in vec3 splatPoint;
+flat in vec3 splatNormal;
+flat in vec3 splatAxis0;
+flat in vec3 splatAxis1;
+flat in float splatThreshold;
+flat in vec4 splatColor;
+flat in vec2 splatPointId;
+
+uniform int splatPass;
+uniform int filterMode;
+uniform float cutoff;
+uniform int perspective;
+// The view rays: pixel (x, y) sees rayOrigin (x, y, 1) + t rayDirection (x, y, 1) at eye depth t.
+uniform mat3 rayOrigin;
+uniform mat3 rayDirection;
+// The viewport's lower-left pixel in the framebuffer drawn into.
+uniform vec2 viewportOrigin;
+uniform float nearDepth;
+uniform float farDepth;
+uniform vec2 depthProjection; // eye z to NDC z: (P22 z + P32) / (P23 z + P33), as (P22, P32)
+uniform vec2 depthProjectionW; // (P23, P33)
+// Peeling: fragments at or in front of the previous layer's visibility depth were drawn there.
+uniform int peel;
+uniform sampler2D previousDepth;
+// Translucent splats: fragments behind the opaque scene already drawn are hidden.
+uniform int sceneTest;
+uniform sampler2D sceneDepth;
+uniform vec3 selectionColor; // actor, composite index and process passes
+uniform int selectionIdPass; // 0: selectionColor, 1: low 24 bits of the id, 2: high 24 bits
+
+//VTK::Output::Dec
+
+float linearDepth(float t)
+{
+  return clamp((t - nearDepth) / (farDepth - nearDepth), 0.0, 1.0);
+}
+
+float windowDepth(float t)
+{
+  float z = -t;
+  float ndc = (depthProjection.x * z + depthProjection.y) /
+    (depthProjectionW.x * z + depthProjectionW.y);
+  return clamp(0.5 * ndc + 0.5, 0.0, 1.0);
+}
+
+vec3 idColor(float id)
+{
+  // 24 bits as RGB bytes, as vtkHardwareSelector decodes them.
+  float low = mod(id, 256.0);
+  float middle = mod(floor(id / 256.0), 256.0);
+  float high = floor(id / 65536.0);
+  return vec3(low, middle, high) / 255.0;
+}
+
+void main()
+{
+  vec2 fragment = gl_FragCoord.xy - viewportOrigin;
+  vec3 pixel = vec3(fragment, 1.0);
+  vec3 origin = rayOrigin * pixel;
+  vec3 direction = rayDirection * pixel;
+  float t = dot(splatNormal, splatPoint - origin) / dot(splatNormal, direction);
+
+  vec2 d = fragment - splatCenter;
+  float beta = splatConic.x * d.x * d.x + splatConic.y * d.x * d.y + splatConic.z * d.y * d.y;
+  if (filterMode == 3)
+  {
+    // Approximate filter: the larger of the object-space kernel, evaluated where the ray meets
+    // the tangent plane, and the screen-space low-pass (Botsch et al. 2005).
+    vec3 local = origin + t * direction - splatPoint;
+    mat2 gram = mat2(dot(splatAxis0, splatAxis0), dot(splatAxis0, splatAxis1),
+      dot(splatAxis0, splatAxis1), dot(splatAxis1, splatAxis1));
+    vec2 u = inverse(gram) * vec2(dot(local, splatAxis0), dot(local, splatAxis1));
+    beta = min(beta, dot(u, u)); // 1/2 u^T Vr^-1 u with Vr = 1/2 I
+  }
+  // A ray that meets the plane behind the eye does not see the splat.
+  if (!(beta < cutoff) || (perspective != 0 && !(t > 0.0)))
+  {
+    discard;
+  }
+  if (splatPass == 2)
+  {
+    gl_FragDepth = windowDepth(t);
+    gl_FragData[0] = vec4(selectionIdPass == 0 ? selectionColor
+        : idColor(selectionIdPass == 1 ? splatPointId.x : splatPointId.y), 1.0);
+    return;
+  }
+  ivec2 texel = ivec2(fragment);
+  float depth = linearDepth(t);
+  if ((peel != 0 && depth <= texelFetch(previousDepth, texel, 0).r) ||
+    (sceneTest != 0 && windowDepth(t) > texelFetch(sceneDepth, texel, 0).r))
+  {
+    discard;
+  }
+  if (splatPass == 0)
+  {
+    gl_FragDepth = linearDepth(t + splatThreshold);
+    return;
+  }
+  float w = splatAmplitude * exp(-beta);
+  gl_FragDepth = depth;
+  gl_FragData[0] = vec4(w * splatColor.rgb, w);
+  gl_FragData[1] = vec4(w * splatNormal, w * splatColor.a);
+  gl_FragData[2] = vec4(w * t);
+}

@@ -1,0 +1,139 @@
+//VTK::System::Dec
+// SPDX-License-Identifier: BSD-3-Clause
+// Surface splats as instanced quads: one instance per surfel, four vertices (a triangle strip)
+// covering the tight bounding box of its resampling kernel's cutoff ellipse. The per-splat setup
+// mirrors SplatSurfelKernel.h (ProjectSurfel, Foreshortening, MakeResamplingKernel) line by line.
+
+in vec3 position; // relative to the shift folded into modelToEye
+in vec3 axis0;
+in vec3 axis1;
+in vec3 normal;
+in vec4 color; // rgb, opacity
+in vec2 pointId; // (id + 1) in two 24-bit halves; selection passes only
+
+uniform mat4 modelToEye;
+uniform mat3 normalToEye;
+uniform mat4 eyeToClip;
+uniform vec2 viewportSize;
+uniform float nearDepth;
+uniform float farDepth;
+uniform float cutoff;
+uniform int filterMode; // 0 EWA, 1 circular, 2 unfiltered, 3 approximate
+uniform int perspective;
+uniform int cullBackFaces;
+uniform float depthThreshold;
+
+flat out vec2 splatCenter;
+flat out vec3 splatConic; // 1/2 M^-1 as (xx, 2 xy, yy): beta = dx^2 xx + dx dy xy + dy^2 yy
+flat out float splatAmplitude;
+flat out vec3 splatPoint;   // eye space
+flat out vec3 splatNormal;  // eye space, facing the viewer
+flat out vec3 splatAxis0;   // eye space, for the approximate filter
+flat out vec3 splatAxis1;
+flat out float splatThreshold;
+flat out vec4 splatColor;
+flat out vec2 splatPointId;
+
+const float InverseTwoPi = 0.15915494309189533577;
+const float EdgeOnForeshortening = 1e-3;
+const float UnfilteredMinimumVariance = 1e-6;
+
+void cull()
+{
+  // Outside the clip volume: the quad yields no fragment.
+  gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+}
+
+void main()
+{
+  vec3 p = (modelToEye * vec4(position, 1.0)).xyz;
+  if (!(-p.z >= nearDepth && -p.z <= farDepth))
+  {
+    cull();
+    return;
+  }
+  vec3 a0 = mat3(modelToEye) * axis0;
+  vec3 a1 = mat3(modelToEye) * axis1;
+
+  // ProjectSurfel: center and Jacobian of the projective map, in pixels.
+  vec4 c = eyeToClip * vec4(p, 1.0);
+  if (!(c.w > 0.0))
+  {
+    cull();
+    return;
+  }
+  vec2 ndc = c.xy / c.w;
+  vec2 halfSize = 0.5 * viewportSize;
+  vec2 center = (ndc + 1.0) * halfSize;
+  vec4 d0 = eyeToClip * vec4(a0, 0.0);
+  vec4 d1 = eyeToClip * vec4(a1, 0.0);
+  vec2 j0 = (d0.xy - ndc * d0.w) / c.w * halfSize;
+  vec2 j1 = (d1.xy - ndc * d1.w) / c.w * halfSize;
+
+  vec3 n = normalize(normalToEye * normal);
+  vec3 view = perspective != 0 ? p : vec3(0.0, 0.0, -1.0);
+  bool backFacing = dot(n, view) > 0.0;
+  if (backFacing && cullBackFaces != 0)
+  {
+    cull();
+    return;
+  }
+  // Foreshortening: edge-on splats are negligible next to their neighbors.
+  float detJ = j0.x * j1.y - j1.x * j0.y;
+  float squaredAxes = dot(j0, j0) + dot(j1, j1);
+  if (!(2.0 * abs(detJ) >= EdgeOnForeshortening * squaredAxes))
+  {
+    cull();
+    return;
+  }
+
+  // MakeResamplingKernel: M = J Vr J^T (+ I), Vr = 1/2 I.
+  float mxx = 0.5 * (j0.x * j0.x + j1.x * j1.x);
+  float mxy = 0.5 * (j0.x * j0.y + j1.x * j1.y);
+  float myy = 0.5 * (j0.y * j0.y + j1.y * j1.y);
+  if (filterMode == 2)
+  {
+    mxx += UnfilteredMinimumVariance;
+    myy += UnfilteredMinimumVariance;
+  }
+  else
+  {
+    mxx += 1.0;
+    myy += 1.0;
+  }
+  if (filterMode == 1)
+  {
+    float mean = 0.5 * (mxx + myy);
+    float halfDifference = 0.5 * (mxx - myy);
+    mxx = myy = mean + sqrt(halfDifference * halfDifference + mxy * mxy);
+    mxy = 0.0;
+  }
+  float detM = mxx * myy - mxy * mxy;
+  // The approximate filter's screen-space part is the unit low-pass alone; its box is EWA's,
+  // which holds both the object-space ellipse and the low-pass disk.
+  splatConic = filterMode == 3 ? vec3(0.5, 0.0, 0.5)
+                               : vec3(0.5 * myy, -mxy, 0.5 * mxx) / detM;
+  splatAmplitude = filterMode == 3 ? 1.0 : abs(detJ) * InverseTwoPi / sqrt(detM);
+  vec2 halfExtent = sqrt(2.0 * cutoff * vec2(mxx, myy));
+  vec2 lo = center - halfExtent;
+  vec2 hi = center + halfExtent;
+  if (hi.x < 0.0 || hi.y < 0.0 || lo.x > viewportSize.x || lo.y > viewportSize.y)
+  {
+    cull();
+    return;
+  }
+
+  splatCenter = center;
+  splatPoint = p;
+  splatNormal = backFacing ? -n : n; // two-sided lighting
+  splatAxis0 = a0;
+  splatAxis1 = a1;
+  splatThreshold = depthThreshold * max(length(a0), length(a1));
+  splatColor = color;
+  splatPointId = pointId;
+
+  // The corner of this vertex, with half a pixel of margin around the box.
+  vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
+  vec2 pixel = center + corner * (halfExtent + 0.5);
+  gl_Position = vec4(pixel / viewportSize * 2.0 - 1.0, 0.0, 1.0);
+}

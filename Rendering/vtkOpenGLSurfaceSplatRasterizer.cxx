@@ -1,0 +1,606 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkOpenGLSurfaceSplatRasterizer.h"
+
+#include "vtkHardwareSelector.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "vtkSurfaceSplatFS.h"
+#include "vtkSurfaceSplatResolveFS.h"
+#include "vtkSurfaceSplatVS.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+vtkStandardNewMacro(vtkOpenGLSurfaceSplatRasterizer);
+
+namespace
+{
+// Floats per splat in the attribute buffer: position, two axes, normal (3 each), RGBA.
+constexpr int SplatStride = 16;
+constexpr int ApproximateFilterMode = 3;
+// The splatting shader's passes (vtkSurfaceSplatFS.glsl).
+enum SplatPass
+{
+  VisibilityPass = 0,
+  AttributePass = 1,
+  SelectionPass = 2
+};
+constexpr int MaximumLights = 8; // as in vtkSurfaceSplatResolveFS.glsl
+
+void SetNearest(vtkTextureObject* texture, vtkOpenGLRenderWindow* window)
+{
+  texture->SetContext(window);
+  texture->SetMinificationFilter(vtkTextureObject::Nearest);
+  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+}
+}
+
+struct vtkOpenGLSurfaceSplatRasterizer::Internals
+{
+  vtkNew<vtkOpenGLBufferObject> Attributes;
+  vtkNew<vtkOpenGLBufferObject> PointIds;
+  vtkNew<vtkOpenGLVertexArrayObject> Array;
+  vtkShaderProgram* ArrayProgram = nullptr; // the program the array's attributes are bound to
+  bool ArrayHasPointIds = false;
+  vtkMTimeType Version = 0;
+  vtkMTimeType PointIdsVersion = 0;
+  glm::dvec3 Shift{ 0.0 };
+  GLsizei Count = 0;
+  bool Translucent = false;
+
+  vtkNew<vtkTextureObject> VisibilityDepth[2]; // ping-pong: this layer's and the previous one's
+  vtkNew<vtkTextureObject> WeightedColor;
+  vtkNew<vtkTextureObject> WeightedNormal;
+  vtkNew<vtkTextureObject> WeightedDepth;
+  vtkNew<vtkTextureObject> LayerColor;
+  vtkNew<vtkTextureObject> LayerDepth;
+  vtkNew<vtkTextureObject> SceneDepth;
+  vtkNew<vtkOpenGLFramebufferObject> SplatFramebuffer;
+  vtkNew<vtkOpenGLFramebufferObject> ResolveFramebuffer;
+  std::unique_ptr<vtkOpenGLQuadHelper> Resolve;
+  GLuint Query = 0;
+  int Width = 0;
+  int Height = 0;
+
+  vtkShaderProgram* ReadySplatProgram(vtkOpenGLRenderWindow* window, bool withPointIds);
+  void Allocate(vtkOpenGLRenderWindow* window, int width, int height);
+  void SetViewUniforms(vtkShaderProgram* program, const vtkSurfaceSplatRasterizer::Camera& camera);
+  void ResolveLayer(vtkOpenGLRenderWindow* window, const vtkSurfaceSplatRasterizer::Camera& camera,
+    const std::vector<splat::Light>& lights, const splat::Material& material,
+    vtkSurfaceSplatRasterizer* settings, int layer);
+  void Draw() { glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, this->Count); }
+};
+
+//------------------------------------------------------------------------------
+vtkShaderProgram* vtkOpenGLSurfaceSplatRasterizer::Internals::ReadySplatProgram(
+  vtkOpenGLRenderWindow* window, bool withPointIds)
+{
+  vtkShaderProgram* program =
+    window->GetShaderCache()->ReadyShaderProgram(vtkSurfaceSplatVS, vtkSurfaceSplatFS, "");
+  if (!program || !program->GetCompiled())
+  {
+    return nullptr;
+  }
+  if (program != this->ArrayProgram || withPointIds != this->ArrayHasPointIds)
+  {
+    // (This releases the array: bind it after.)
+    this->Array->ShaderProgramChanged();
+    this->Array->Bind();
+    const std::size_t stride = SplatStride * sizeof(float);
+    const std::array<std::pair<const char*, int>, 5> attributes = { { { "position", 3 },
+      { "axis0", 3 }, { "axis1", 3 }, { "normal", 3 }, { "color", 4 } } };
+    int offset = 0;
+    for (const auto& attribute : attributes)
+    {
+      this->Array->AddAttributeArrayWithDivisor(program, this->Attributes, attribute.first,
+        offset * sizeof(float), stride, VTK_FLOAT, attribute.second, false, 1, false);
+      offset += attribute.second;
+    }
+    if (withPointIds)
+    {
+      this->Array->AddAttributeArrayWithDivisor(program, this->PointIds, "pointId", 0,
+        2 * sizeof(float), VTK_FLOAT, 2, false, 1, false);
+    }
+    this->ArrayProgram = program;
+    this->ArrayHasPointIds = withPointIds;
+  }
+  this->Array->Bind();
+  return program;
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenGLSurfaceSplatRasterizer::Internals::Allocate(
+  vtkOpenGLRenderWindow* window, int width, int height)
+{
+  if (width == this->Width && height == this->Height && this->LayerColor->GetHandle() != 0)
+  {
+    return;
+  }
+  for (auto& depth : this->VisibilityDepth)
+  {
+    SetNearest(depth, window);
+    depth->AllocateDepth(width, height, vtkTextureObject::Float32);
+  }
+  for (vtkTextureObject* color : { this->WeightedColor.Get(), this->WeightedNormal.Get(),
+         this->LayerColor.Get() })
+  {
+    SetNearest(color, window);
+    color->Allocate2D(width, height, 4, VTK_FLOAT);
+  }
+  for (vtkTextureObject* scalar : { this->WeightedDepth.Get(), this->LayerDepth.Get() })
+  {
+    SetNearest(scalar, window);
+    scalar->Allocate2D(width, height, 1, VTK_FLOAT);
+  }
+  // Attachments are made on the bound framebuffer (the caller keeps VTK's bindings).
+  this->SplatFramebuffer->SetContext(window);
+  this->SplatFramebuffer->Bind();
+  this->SplatFramebuffer->AddColorAttachment(0, this->WeightedColor);
+  this->SplatFramebuffer->AddColorAttachment(1, this->WeightedNormal);
+  this->SplatFramebuffer->AddColorAttachment(2, this->WeightedDepth);
+  this->ResolveFramebuffer->SetContext(window);
+  this->ResolveFramebuffer->Bind();
+  this->ResolveFramebuffer->AddColorAttachment(0, this->LayerColor);
+  this->ResolveFramebuffer->AddColorAttachment(1, this->LayerDepth);
+  this->Width = width;
+  this->Height = height;
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenGLSurfaceSplatRasterizer::Internals::SetViewUniforms(
+  vtkShaderProgram* program, const vtkSurfaceSplatRasterizer::Camera& camera)
+{
+  // The shift is folded in double precision: the float matrix then only holds the (small)
+  // offsets between the data and the camera.
+  const glm::dmat4 modelToEye = camera.ModelToEye * glm::translate(glm::dmat4(1.0), this->Shift);
+  glm::mat4 modelToEyeF(modelToEye);
+  glm::mat3 normalToEye(glm::transpose(glm::inverse(glm::dmat3(camera.ModelToEye))));
+  glm::mat4 eyeToClip(camera.EyeToClip);
+  const glm::dvec2 viewport(camera.Viewport);
+  const splat::PixelRays rays = splat::MakePixelRays(camera.EyeToClip, viewport);
+  glm::mat3 rayOrigin(rays.Origin);
+  glm::mat3 rayDirection(rays.Direction);
+  const glm::dmat4 clipToEye = glm::inverse(camera.EyeToClip);
+  auto eyeDepth = [&clipToEye](double zNdc)
+  {
+    const glm::dvec4 eye = clipToEye * glm::dvec4(0.0, 0.0, zNdc, 1.0);
+    return static_cast<float>(-eye.z / eye.w);
+  };
+  const glm::dmat4& P = camera.EyeToClip;
+  const float viewportSize[2] = { static_cast<float>(viewport.x), static_cast<float>(viewport.y) };
+  const float depthProjection[2] = { static_cast<float>(P[2][2]), static_cast<float>(P[3][2]) };
+  const float depthProjectionW[2] = { static_cast<float>(P[2][3]), static_cast<float>(P[3][3]) };
+  program->SetUniformMatrix4x4("modelToEye", glm::value_ptr(modelToEyeF));
+  program->SetUniformMatrix3x3("normalToEye", glm::value_ptr(normalToEye));
+  program->SetUniformMatrix4x4("eyeToClip", glm::value_ptr(eyeToClip));
+  program->SetUniformMatrix3x3("rayOrigin", glm::value_ptr(rayOrigin));
+  program->SetUniformMatrix3x3("rayDirection", glm::value_ptr(rayDirection));
+  program->SetUniform2f("viewportSize", viewportSize);
+  program->SetUniformi("perspective", rays.Perspective ? 1 : 0);
+  program->SetUniformf("nearDepth", eyeDepth(-1.0));
+  program->SetUniformf("farDepth", eyeDepth(1.0));
+  program->SetUniform2f("depthProjection", depthProjection);
+  program->SetUniform2f("depthProjectionW", depthProjectionW);
+}
+
+//------------------------------------------------------------------------------
+vtkOpenGLSurfaceSplatRasterizer::vtkOpenGLSurfaceSplatRasterizer()
+  : Internal(new Internals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkOpenGLSurfaceSplatRasterizer::~vtkOpenGLSurfaceSplatRasterizer() = default;
+
+//------------------------------------------------------------------------------
+void vtkOpenGLSurfaceSplatRasterizer::SetSurfels(
+  const vtkSurfaceSplatRasterizer::Surfels& surfels, vtkMTimeType version)
+{
+  Internals& internal = *this->Internal;
+  if (version == internal.Version && internal.Attributes->GetHandle() != 0)
+  {
+    return;
+  }
+  const std::size_t n = surfels.Count;
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const glm::dvec3 p(surfels.Positions[3 * i], surfels.Positions[3 * i + 1],
+      surfels.Positions[3 * i + 2]);
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  internal.Shift = n > 0 ? 0.5 * (lo + hi) : glm::dvec3(0.0);
+  std::vector<float> data(SplatStride * n);
+  internal.Translucent = false;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    float* d = &data[SplatStride * i];
+    for (int c = 0; c < 3; ++c)
+    {
+      d[c] = static_cast<float>(surfels.Positions[3 * i + c] - internal.Shift[c]);
+      d[3 + c] = surfels.Axes0[3 * i + c];
+      d[6 + c] = surfels.Axes1[3 * i + c];
+      d[9 + c] = surfels.Normals[3 * i + c];
+      d[12 + c] = surfels.Colors[3 * i + c];
+    }
+    d[15] = surfels.Opacities ? surfels.Opacities[i] : 1.0f;
+    internal.Translucent = internal.Translucent || d[15] < 1.0f;
+  }
+  internal.Attributes->Upload(data, vtkOpenGLBufferObject::ArrayBuffer);
+  internal.Count = static_cast<GLsizei>(n);
+  internal.Version = version;
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
+  const vtkSurfaceSplatRasterizer::Camera& camera, const std::vector<splat::Light>& lights,
+  const splat::Material& material, vtkSurfaceSplatRasterizer* settings,
+  const std::vector<float>& sceneDepths)
+{
+  Internals& internal = *this->Internal;
+  this->PeeledLayers = 0;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  const int width = camera.Viewport.x;
+  const int height = camera.Viewport.y;
+  if (!window || width <= 0 || height <= 0)
+  {
+    return;
+  }
+  vtkOpenGLState* state = window->GetState();
+  state->PushFramebufferBindings();
+  internal.Allocate(window, width, height);
+  vtkOpenGLState::ScopedglViewport viewport(state);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable scissor(state, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cull(state, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
+  vtkOpenGLState::ScopedglColorMask colorMask(state);
+  vtkOpenGLState::ScopedglClearColor clearColor(state);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(state);
+  state->vtkglViewport(0, 0, width, height);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_CULL_FACE);
+  state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+
+  // The resolved image starts empty: no color, the far plane.
+  internal.ResolveFramebuffer->Bind();
+  internal.ResolveFramebuffer->ActivateDrawBuffers(1);
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+  internal.ResolveFramebuffer->ActivateDrawBuffer(1);
+  state->vtkglClearColor(1.0f, 1.0f, 1.0f, 1.0f);
+  state->vtkglClear(GL_COLOR_BUFFER_BIT);
+  state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+
+  vtkShaderProgram* program = internal.ReadySplatProgram(window, false);
+  if (!program)
+  {
+    vtkErrorMacro("The splatting shaders did not compile.");
+    state->PopFramebufferBindings();
+    return;
+  }
+  const bool translucent = internal.Translucent;
+  internal.SetViewUniforms(program, camera);
+  program->SetUniformf("cutoff", static_cast<float>(settings->GetCutoff()));
+  program->SetUniformi("filterMode",
+    this->ApproximateFilter ? ApproximateFilterMode : static_cast<int>(settings->GetFilter()));
+  program->SetUniformi("cullBackFaces", settings->GetBackfaceCulling() && !translucent);
+  program->SetUniformf("depthThreshold", static_cast<float>(settings->GetDepthThreshold()));
+  program->SetUniform2f("viewportOrigin", std::array<float, 2>{ 0.0f, 0.0f }.data());
+  const bool sceneTest =
+    translucent && sceneDepths.size() == static_cast<std::size_t>(width) * height;
+  program->SetUniformi("sceneTest", sceneTest);
+  if (sceneTest)
+  {
+    SetNearest(internal.SceneDepth, window);
+    internal.SceneDepth->Create2DFromRaw(
+      width, height, 1, VTK_FLOAT, const_cast<float*>(sceneDepths.data()));
+    internal.SceneDepth->Activate();
+    program->SetUniformi("sceneDepth", internal.SceneDepth->GetTextureUnit());
+  }
+
+  if (!internal.Query)
+  {
+    glGenQueries(1, &internal.Query);
+  }
+  const int layers = translucent || settings->GetEdgeAntialiasing() ? settings->GetNumberOfLayers() : 1;
+  for (int layer = 0; layer < layers; ++layer)
+  {
+    vtkTextureObject* depth = internal.VisibilityDepth[layer % 2];
+    vtkTextureObject* previous = internal.VisibilityDepth[(layer + 1) % 2];
+    window->GetShaderCache()->ReadyShaderProgram(program);
+    internal.Array->Bind();
+    internal.SplatFramebuffer->Bind();
+    internal.SplatFramebuffer->AddDepthAttachment(depth);
+    internal.SplatFramebuffer->ActivateDrawBuffers(3);
+    if (layer > 0)
+    {
+      previous->Activate();
+      program->SetUniformi("previousDepth", previous->GetTextureUnit());
+    }
+    program->SetUniformi("peel", layer > 0);
+
+    // Pass 1: visibility.
+    state->vtkglDisable(GL_BLEND);
+    state->vtkglEnable(GL_DEPTH_TEST);
+    state->vtkglDepthFunc(GL_LESS);
+    state->vtkglDepthMask(GL_TRUE);
+    state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    state->vtkglClear(GL_DEPTH_BUFFER_BIT);
+    program->SetUniformi("splatPass", VisibilityPass);
+    glBeginQuery(GL_ANY_SAMPLES_PASSED, internal.Query);
+    internal.Draw();
+    glEndQuery(GL_ANY_SAMPLES_PASSED);
+    GLuint anySamples = 0;
+    glGetQueryObjectuiv(internal.Query, GL_QUERY_RESULT, &anySamples);
+    if (!anySamples)
+    {
+      if (layer > 0)
+      {
+        previous->Deactivate();
+      }
+      break; // nothing lies behind the layers peeled so far
+    }
+
+    // Pass 2: attributes, added up within the visibility depth.
+    state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    state->vtkglClear(GL_COLOR_BUFFER_BIT);
+    state->vtkglDepthFunc(GL_LEQUAL);
+    state->vtkglDepthMask(GL_FALSE);
+    state->vtkglEnable(GL_BLEND);
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+    program->SetUniformi("splatPass", AttributePass);
+    internal.Draw();
+    internal.Array->Release();
+    if (layer > 0)
+    {
+      previous->Deactivate();
+    }
+
+    // Pass 3: normalize, shade, and blend under the layers in front (the first one also
+    // writes its depth).
+    internal.ResolveLayer(window, camera, lights, material, settings, layer);
+    this->PeeledLayers = layer + 1;
+  }
+  if (sceneTest)
+  {
+    internal.SceneDepth->Deactivate();
+  }
+  state->PopFramebufferBindings();
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenGLSurfaceSplatRasterizer::Internals::ResolveLayer(vtkOpenGLRenderWindow* window,
+  const vtkSurfaceSplatRasterizer::Camera& camera, const std::vector<splat::Light>& lights,
+  const splat::Material& material, vtkSurfaceSplatRasterizer* settings, int layer)
+{
+  if (!this->Resolve)
+  {
+    this->Resolve.reset(new vtkOpenGLQuadHelper(window, nullptr, vtkSurfaceSplatResolveFS, ""));
+  }
+  else
+  {
+    window->GetShaderCache()->ReadyShaderProgram(this->Resolve->Program);
+  }
+  vtkShaderProgram* program = this->Resolve->Program;
+  if (!program || !program->GetCompiled())
+  {
+    return;
+  }
+  vtkOpenGLState* state = window->GetState();
+  this->ResolveFramebuffer->Bind();
+  state->vtkglDisable(GL_DEPTH_TEST);
+  if (layer == 0)
+  {
+    this->ResolveFramebuffer->ActivateDrawBuffers(2);
+    state->vtkglDisable(GL_BLEND);
+  }
+  else
+  {
+    // Front to back: what this layer shows is what the layers in front let through.
+    this->ResolveFramebuffer->ActivateDrawBuffers(1);
+    state->vtkglEnable(GL_BLEND);
+    state->vtkglBlendFuncSeparate(GL_ONE_MINUS_DST_ALPHA, GL_ONE, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
+  }
+
+  this->SetViewUniforms(program, camera);
+  program->SetUniformi("edgeAntialiasing", settings->GetEdgeAntialiasing());
+  program->SetUniformf("fullCoverage", settings->FullCoverageWeight());
+  const int count = std::min(static_cast<int>(lights.size()), MaximumLights);
+  if (static_cast<int>(lights.size()) > MaximumLights)
+  {
+    vtkGenericWarningMacro("Splats are lit by the first " << MaximumLights << " of "
+                                                          << lights.size() << " lights.");
+  }
+  float color[MaximumLights][3], direction[MaximumLights][3], position[MaximumLights][3],
+    attenuation[MaximumLights][3], coneCosine[MaximumLights], exponent[MaximumLights];
+  int positional[MaximumLights];
+  for (int i = 0; i < count; ++i)
+  {
+    const splat::Light& light = lights[i];
+    for (int c = 0; c < 3; ++c)
+    {
+      color[i][c] = light.Color[c];
+      direction[i][c] = light.Direction[c];
+      position[i][c] = light.Position[c];
+      attenuation[i][c] = light.Attenuation[c];
+    }
+    coneCosine[i] = light.ConeCosine;
+    exponent[i] = light.Exponent;
+    positional[i] = light.Positional;
+  }
+  program->SetUniformi("numberOfLights", count);
+  if (count > 0)
+  {
+    program->SetUniform3fv("lightColor", count, color);
+    program->SetUniform3fv("lightDirection", count, direction);
+    program->SetUniform1iv("lightPositional", count, positional);
+    program->SetUniform3fv("lightPosition", count, position);
+    program->SetUniform3fv("lightAttenuation", count, attenuation);
+    program->SetUniform1fv("lightConeCosine", count, coneCosine);
+    program->SetUniform1fv("lightExponent", count, exponent);
+  }
+  program->SetUniformf("ambient", material.Ambient);
+  program->SetUniform3f("ambientColor", glm::value_ptr(material.AmbientColor));
+  program->SetUniformi("ambientFromColor", material.AmbientFromColor);
+  program->SetUniformf("diffuse", material.Diffuse);
+  program->SetUniform3f("specular", glm::value_ptr(material.Specular));
+  program->SetUniformf("specularPower", material.SpecularPower);
+
+  vtkTextureObject* inputs[3] = { this->WeightedColor, this->WeightedNormal, this->WeightedDepth };
+  const char* names[3] = { "weightedColor", "weightedNormal", "weightedDepth" };
+  for (int i = 0; i < 3; ++i)
+  {
+    inputs[i]->Activate();
+    program->SetUniformi(names[i], inputs[i]->GetTextureUnit());
+  }
+  this->Resolve->Render();
+  for (vtkTextureObject* input : inputs)
+  {
+    input->Deactivate();
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkOpenGLSurfaceSplatRasterizer::GetColorTexture()
+{
+  return this->Internal->LayerColor;
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkOpenGLSurfaceSplatRasterizer::GetDepthTexture()
+{
+  return this->Internal->LayerDepth;
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenGLSurfaceSplatRasterizer::RenderSelection(vtkRenderer* renderer,
+  vtkHardwareSelector* selector, const vtkSurfaceSplatRasterizer::Camera& camera,
+  vtkSurfaceSplatRasterizer* settings, const std::vector<vtkIdType>& pointIds)
+{
+  Internals& internal = *this->Internal;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window || internal.Count == 0 || pointIds.size() != static_cast<std::size_t>(internal.Count))
+  {
+    return;
+  }
+  if (internal.PointIdsVersion != internal.Version)
+  {
+    // (id + 1) in two exact 24-bit halves: 0 is the selector's "nothing".
+    std::vector<float> ids(2 * pointIds.size());
+    for (std::size_t i = 0; i < pointIds.size(); ++i)
+    {
+      const long long id = static_cast<long long>(pointIds[i]) + 1;
+      ids[2 * i] = static_cast<float>(id & 0xffffff);
+      ids[2 * i + 1] = static_cast<float>((id >> 24) & 0xffffff);
+    }
+    internal.PointIds->Upload(ids, vtkOpenGLBufferObject::ArrayBuffer);
+    internal.PointIdsVersion = internal.Version;
+  }
+  vtkShaderProgram* program = internal.ReadySplatProgram(window, true);
+  if (!program)
+  {
+    vtkErrorMacro("The splatting shaders did not compile.");
+    return;
+  }
+  int width, height, originX, originY;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
+  internal.SetViewUniforms(program, camera);
+  program->SetUniformf("cutoff", static_cast<float>(settings->GetCutoff()));
+  program->SetUniformi("filterMode",
+    this->ApproximateFilter ? ApproximateFilterMode : static_cast<int>(settings->GetFilter()));
+  program->SetUniformi("cullBackFaces", settings->GetBackfaceCulling());
+  program->SetUniformf("depthThreshold", 0.0f);
+  const float origin[2] = { static_cast<float>(originX), static_cast<float>(originY) };
+  program->SetUniform2f("viewportOrigin", origin);
+  program->SetUniformi("peel", 0);
+  program->SetUniformi("sceneTest", 0);
+  program->SetUniformi("splatPass", SelectionPass);
+  int idPass = 0;
+  switch (selector->GetCurrentPass())
+  {
+    case vtkHardwareSelector::POINT_ID_LOW24:
+    case vtkHardwareSelector::CELL_ID_LOW24:
+      idPass = 1;
+      break;
+    case vtkHardwareSelector::POINT_ID_HIGH24:
+    case vtkHardwareSelector::CELL_ID_HIGH24:
+      idPass = 2;
+      break;
+    default:
+      break;
+  }
+  program->SetUniformi("selectionIdPass", idPass);
+  program->SetUniform3f("selectionColor", selector->GetPropColorValue());
+
+  vtkOpenGLState* state = window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(state, GL_BLEND);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_BLEND);
+  state->vtkglDepthMask(GL_TRUE);
+  state->vtkglDepthFunc(GL_LEQUAL);
+  internal.Draw();
+  internal.Array->Release();
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenGLSurfaceSplatRasterizer::ReleaseGraphicsResources(vtkWindow* window)
+{
+  Internals& internal = *this->Internal;
+  internal.Attributes->ReleaseGraphicsResources();
+  internal.PointIds->ReleaseGraphicsResources();
+  internal.Array->ReleaseGraphicsResources();
+  internal.ArrayProgram = nullptr;
+  internal.Version = internal.PointIdsVersion = 0;
+  for (vtkTextureObject* texture :
+    { internal.VisibilityDepth[0].Get(), internal.VisibilityDepth[1].Get(),
+      internal.WeightedColor.Get(), internal.WeightedNormal.Get(), internal.WeightedDepth.Get(),
+      internal.LayerColor.Get(), internal.LayerDepth.Get(), internal.SceneDepth.Get() })
+  {
+    texture->ReleaseGraphicsResources(window);
+  }
+  internal.SplatFramebuffer->ReleaseGraphicsResources(window);
+  internal.ResolveFramebuffer->ReleaseGraphicsResources(window);
+  internal.Width = internal.Height = 0;
+  if (internal.Resolve)
+  {
+    internal.Resolve->ReleaseGraphicsResources(window);
+    internal.Resolve.reset();
+  }
+  if (internal.Query)
+  {
+    glDeleteQueries(1, &internal.Query);
+    internal.Query = 0;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenGLSurfaceSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ApproximateFilter: " << this->ApproximateFilter << "\n";
+  os << indent << "PeeledLayers: " << this->PeeledLayers << "\n";
+}
