@@ -5,7 +5,7 @@ set(splat_vtk_components
   FiltersCore FiltersGeneral FiltersPoints FiltersSources
   IOGeometry IOLegacy IOPLY IOXML IOImage
   ImagingCore InteractionStyle
-  RenderingCore RenderingOpenGL2 RenderingFreeType
+  RenderingCore RenderingOpenGL2 RenderingFreeType RenderingVolume RenderingVolumeOpenGL2
   TestingRendering)
 
 if (SPLAT_BUILD_PARAVIEW_PLUGIN)

@@ -1,0 +1,713 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkVolumeSplatMapper.h"
+
+#include "SplatVolumeKernel.h"
+#include "vtkOpenGLImageDepthCompositor.h"
+#include "vtkSplatBackend.h"
+#include "vtkVolumeSplatRasterizer.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkRenderer.h"
+#include "vtkSMPTools.h"
+#include "vtkTimeStamp.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+vtkStandardNewMacro(vtkVolumeSplatMapper);
+
+// The kernels of the current input, rebuilt only when it, the mapper or the volume property
+// changes.
+struct vtkVolumeSplatMapper::KernelArrays
+{
+  std::vector<double> Positions;
+  std::vector<float> Covariances; // empty for image data (one shared covariance)
+  std::vector<float> Colors;
+  std::vector<float> Strengths;
+  std::vector<vtkIdType> GridIds; // image data only
+  vtkVolumeSplatRasterizer::Kernels View;
+  vtkVolumeProperty* Property = nullptr; // the property they were built with (not dereferenced)
+  vtkTimeStamp BuildTime;
+
+  void Clear()
+  {
+    for (auto* v : { &this->Covariances, &this->Colors, &this->Strengths })
+    {
+      v->clear();
+    }
+    this->Positions.clear();
+    this->GridIds.clear();
+    this->View = vtkVolumeSplatRasterizer::Kernels();
+  }
+
+  /// Points the rasterizer's view at the arrays.
+  void Publish()
+  {
+    this->View.Count = this->Strengths.size();
+    this->View.Positions = this->Positions.data();
+    this->View.Covariances = this->Covariances.empty() ? nullptr : this->Covariances.data();
+    this->View.Colors = this->Colors.data();
+    this->View.Strengths = this->Strengths.data();
+    this->View.GridIds = this->GridIds.empty() ? nullptr : this->GridIds.data();
+  }
+};
+
+namespace
+{
+glm::dmat4 ToGlm(vtkMatrix4x4* m)
+{
+  glm::dmat4 result;
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int column = 0; column < 4; ++column)
+    {
+      result[column][row] = m->GetElement(row, column);
+    }
+  }
+  return result;
+}
+
+// The transfer functions of component 0 sampled over the scalar range: one entry per integer
+// for integer scalars with at most 65536 values (exact), 65536 entries otherwise.
+class TransferTables
+{
+public:
+  TransferTables(vtkVolumeProperty* property, vtkDataArray* scalars)
+  {
+    double range[2];
+    scalars->GetFiniteRange(range, 0);
+    if (!(range[0] <= range[1]))
+    {
+      range[0] = range[1] = 0.0;
+    }
+    this->Low = range[0];
+    const double span = range[1] - range[0];
+    const bool integers =
+      scalars->GetDataType() != VTK_FLOAT && scalars->GetDataType() != VTK_DOUBLE;
+    const int size = integers && span < 65536.0 ? static_cast<int>(span) + 1 : 65536;
+    this->Scale = span > 0.0 ? (size - 1) / span : 0.0;
+    this->Extinction.resize(size);
+    this->Colors.resize(3 * size);
+    property->GetScalarOpacity(0)->GetTable(range[0], range[1], size, this->Extinction.data());
+    const double unitDistance = property->GetScalarOpacityUnitDistance(0);
+    for (double& tau : this->Extinction)
+    {
+      // Opacity per unit distance to extinction per unit length, as VTK's ray casters correct
+      // opacity for their sample distance: alpha(ds) = 1 - (1 - alpha)^(ds / unitDistance).
+      tau = -std::log1p(-std::min(std::max(tau, 0.0), 0.999)) / unitDistance;
+    }
+    if (property->GetColorChannels(0) == 1)
+    {
+      std::vector<double> gray(size);
+      property->GetGrayTransferFunction(0)->GetTable(range[0], range[1], size, gray.data());
+      for (int i = 0; i < size; ++i)
+      {
+        std::fill_n(this->Colors.begin() + 3 * i, 3, gray[i]);
+      }
+    }
+    else
+    {
+      property->GetRGBTransferFunction(0)->GetTable(range[0], range[1], size, this->Colors.data());
+    }
+  }
+
+  /// The entry of a finite scalar value.
+  std::size_t Index(double s) const
+  {
+    const double t = std::round((s - this->Low) * this->Scale);
+    return static_cast<std::size_t>(
+      std::min(std::max(t, 0.0), static_cast<double>(this->Extinction.size() - 1)));
+  }
+
+  std::vector<double> Extinction;
+  std::vector<double> Colors;
+
+private:
+  double Low = 0.0;
+  double Scale = 0.0;
+};
+
+// Whether the symmetric matrix is positive semi-definite, to the precision of float input: all
+// principal minors non-negative within a relative 1e-6.
+bool IsPositiveSemiDefinite(const glm::dmat3& V)
+{
+  const double scale = std::abs(V[0][0]) + std::abs(V[1][1]) + std::abs(V[2][2]);
+  const double tolerance = 1e-6;
+  if (!(scale > 0.0) || !std::isfinite(scale))
+  {
+    return false;
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    const int j = (i + 1) % 3;
+    if (V[i][i] < -tolerance * scale ||
+      V[i][i] * V[j][j] - V[i][j] * V[i][j] < -tolerance * scale * scale)
+    {
+      return false;
+    }
+  }
+  return glm::determinant(V) >= -tolerance * scale * scale * scale;
+}
+
+// The input's point-data array of that name with that many components, or null.
+vtkDataArray* ArrayOf(vtkDataSet* input, const char* name, int components)
+{
+  vtkDataArray* array = name ? input->GetPointData()->GetArray(name) : nullptr;
+  return array && array->GetNumberOfComponents() == components ? array : nullptr;
+}
+
+bool IsFinite(const double* v, int n)
+{
+  return std::all_of(v, v + n, [](double x) { return std::isfinite(x); });
+}
+}
+
+//------------------------------------------------------------------------------
+vtkVolumeSplatMapper::vtkVolumeSplatMapper()
+  : Kernels(new KernelArrays)
+{
+  this->SetCovarianceArrayName("Covariance");
+  this->SetScaleArrayName("Scale");
+  this->SetRotationArrayName("Rotation");
+  this->SetColorArrayName("Color");
+  this->SetOpacityArrayName("Opacity");
+}
+
+//------------------------------------------------------------------------------
+vtkVolumeSplatMapper::~vtkVolumeSplatMapper()
+{
+  this->SetCovarianceArrayName(nullptr);
+  this->SetScaleArrayName(nullptr);
+  this->SetRotationArrayName(nullptr);
+  this->SetColorArrayName(nullptr);
+  this->SetOpacityArrayName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatMapper::SetOrderingMode(int mode)
+{
+  if (mode != this->Rasterizer->GetOrderingMode())
+  {
+    this->Rasterizer->SetOrderingMode(mode);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkVolumeSplatMapper::GetOrderingMode()
+{
+  return this->Rasterizer->GetOrderingMode();
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatMapper::SetBlendThreshold(double h)
+{
+  if (h != this->Rasterizer->GetBlendThreshold())
+  {
+    this->Rasterizer->SetBlendThreshold(h);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+double vtkVolumeSplatMapper::GetBlendThreshold()
+{
+  return this->Rasterizer->GetBlendThreshold();
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatMapper::SetCutoff(double cutoff)
+{
+  if (cutoff != this->Rasterizer->GetCutoff())
+  {
+    this->Rasterizer->SetCutoff(cutoff);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+double vtkVolumeSplatMapper::GetCutoff()
+{
+  return this->Rasterizer->GetCutoff();
+}
+
+//------------------------------------------------------------------------------
+bool vtkVolumeSplatMapper::GetListTraversed(int axis)
+{
+  return this->Rasterizer->GetListTraversed(axis);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkVolumeSplatMapper::GetNumberOfProjectedKernels(int axis)
+{
+  return this->Rasterizer->GetProjectedCount(axis);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkVolumeSplatMapper::GetNumberOfProjectedKernels()
+{
+  return this->Rasterizer->GetProjectedCount();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkVolumeSplatMapper::GetNumberOfNearPlaneKernels()
+{
+  return this->Rasterizer->GetNearPlaneCount();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkVolumeSplatMapper::GetNumberOfFrustumCulledKernels()
+{
+  return this->Rasterizer->GetFrustumCulledCount();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkVolumeSplatMapper::GetNumberOfSorts()
+{
+  return this->Rasterizer->GetSortCount();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkVolumeSplatMapper::GetNumberOfListBuilds()
+{
+  return this->Rasterizer->GetListBuildCount();
+}
+
+//------------------------------------------------------------------------------
+bool vtkVolumeSplatMapper::UpdateKernels(vtkVolumeProperty* property)
+{
+  vtkDataSet* input = this->GetDataSetInput();
+  const vtkMTimeType changed =
+    std::max({ input->GetMTime(), this->GetMTime(), property->GetMTime() });
+  KernelArrays& k = *this->Kernels;
+  if (k.BuildTime.GetMTime() > changed && k.Property == property)
+  {
+    return true;
+  }
+  k.Clear();
+  this->NumberOfKernels = this->NumberOfTransparentKernels = this->NumberOfInvalidKernels = 0;
+  bool ok = false;
+  if (auto* image = vtkImageData::SafeDownCast(input))
+  {
+    ok = this->BuildImageKernels(image, property);
+  }
+  else if (auto* points = vtkPointSet::SafeDownCast(input))
+  {
+    ok = this->BuildPointKernels(points, property);
+  }
+  else
+  {
+    vtkErrorMacro("vtkVolumeSplatMapper renders vtkImageData and vtkPointSet inputs, not "
+      << input->GetClassName() << ".");
+  }
+  if (!ok)
+  {
+    k.Clear();
+  }
+  k.Publish();
+  this->NumberOfKernels = static_cast<vtkIdType>(k.View.Count);
+  this->Rasterizer->SetKernels(k.View);
+  k.Property = property;
+  k.BuildTime.Modified();
+  if (this->NumberOfInvalidKernels > 0)
+  {
+    vtkWarningMacro(<< this->NumberOfInvalidKernels
+                    << " kernels skipped: non-finite position, scalar, covariance, scale, "
+                       "rotation or opacity, zero rotation quaternion, or a covariance that is "
+                       "not positive semi-definite.");
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumeProperty* property)
+{
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, this->ScalarMode,
+    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  if (!scalars || cellFlag != 0)
+  {
+    vtkErrorMacro("vtkVolumeSplatMapper needs point scalars on its image data input.");
+    return false;
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  const TransferTables tables(property, scalars);
+  glm::dmat3 indexToModel;
+  const double* spacing = image->GetSpacing();
+  vtkMatrix3x3* direction = image->GetDirectionMatrix();
+  for (int column = 0; column < 3; ++column)
+  {
+    for (int row = 0; row < 3; ++row)
+    {
+      indexToModel[column][row] = direction->GetElement(row, column) * spacing[column];
+    }
+  }
+  const glm::dvec3 origin(image->GetOrigin()[0], image->GetOrigin()[1], image->GetOrigin()[2]);
+  const double voxelVolume = std::abs(glm::determinant(indexToModel));
+
+  // Two passes over the k-slices in parallel: count the visible voxels, then fill, so that the
+  // kernels stay in voxel-id order (the Z list) whatever the number of threads.
+  const vtkIdType nx = dims[0], ny = dims[1], nz = dims[2];
+  std::vector<vtkIdType> offsets(nz + 1, 0);
+  std::vector<vtkIdType> invalid(nz, 0);
+  vtkSMPTools::For(0, nz,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType z = begin; z < end; ++z)
+      {
+        for (vtkIdType id = z * nx * ny; id < (z + 1) * nx * ny; ++id)
+        {
+          const double s = scalars->GetComponent(id, 0);
+          if (!std::isfinite(s))
+          {
+            ++invalid[z];
+          }
+          else if (tables.Extinction[tables.Index(s)] > 0.0)
+          {
+            ++offsets[z + 1];
+          }
+        }
+      }
+    });
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  this->UpdateProgress(0.5);
+  KernelArrays& k = *this->Kernels;
+  const vtkIdType n = offsets[nz];
+  k.Positions.resize(3 * n);
+  k.Colors.resize(3 * n);
+  k.Strengths.resize(n);
+  k.GridIds.resize(n);
+  vtkSMPTools::For(0, nz,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType z = begin; z < end; ++z)
+      {
+        vtkIdType out = offsets[z];
+        for (vtkIdType y = 0; y < ny; ++y)
+        {
+          for (vtkIdType x = 0; x < nx; ++x)
+          {
+            const vtkIdType id = x + nx * (y + ny * z);
+            const double s = scalars->GetComponent(id, 0);
+            if (!std::isfinite(s))
+            {
+              continue;
+            }
+            const std::size_t entry = tables.Index(s);
+            const double tau = tables.Extinction[entry];
+            if (!(tau > 0.0))
+            {
+              continue;
+            }
+            const glm::dvec3 p = origin + indexToModel * glm::dvec3(x, y, z);
+            for (int c = 0; c < 3; ++c)
+            {
+              k.Positions[3 * out + c] = p[c];
+              k.Colors[3 * out + c] = static_cast<float>(tables.Colors[3 * entry + c]);
+            }
+            k.Strengths[out] = static_cast<float>(tau * voxelVolume);
+            k.GridIds[out] = id;
+            ++out;
+          }
+        }
+      }
+    });
+  this->UpdateProgress(1.0);
+  this->NumberOfInvalidKernels = std::accumulate(invalid.begin(), invalid.end(), vtkIdType(0));
+  this->NumberOfTransparentKernels = nx * ny * nz - n - this->NumberOfInvalidKernels;
+  k.View.SharedCovariance = splat::VoxelCovariance(indexToModel);
+  k.View.PeakOpacity = false;
+  // The lists' axes: the index axes, unit length.
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    k.View.ListFrame[axis] = glm::normalize(indexToModel[axis]);
+  }
+  k.View.GridDimensions = glm::ivec3(dims[0], dims[1], dims[2]);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProperty* property)
+{
+  vtkDataArray* covariances = ArrayOf(input, this->CovarianceArrayName, 6);
+  vtkDataArray* scales = ArrayOf(input, this->ScaleArrayName, 3);
+  vtkDataArray* rotations = ArrayOf(input, this->RotationArrayName, 4);
+  if (!covariances && !(scales && rotations))
+  {
+    vtkErrorMacro("vtkVolumeSplatMapper needs a 6-component covariance array '"
+      << (this->CovarianceArrayName ? this->CovarianceArrayName : "") << "' or a 3-component "
+      << "scale array '" << (this->ScaleArrayName ? this->ScaleArrayName : "")
+      << "' and a 4-component rotation array '"
+      << (this->RotationArrayName ? this->RotationArrayName : "") << "' on its point set input.");
+    return false;
+  }
+  vtkDataArray* colors = ArrayOf(input, this->ColorArrayName, 3);
+  colors = colors ? colors : ArrayOf(input, this->ColorArrayName, 4);
+  vtkDataArray* opacities = ArrayOf(input, this->OpacityArrayName, 1);
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, this->ScalarMode,
+    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  scalars = cellFlag == 0 ? scalars : nullptr;
+  if ((!colors || !opacities) && !scalars)
+  {
+    vtkErrorMacro("vtkVolumeSplatMapper needs point scalars for the transfer functions, or a "
+                  "color array and an opacity array, on its point set input.");
+    return false;
+  }
+  std::unique_ptr<TransferTables> tables(scalars ? new TransferTables(property, scalars) : nullptr);
+  const double colorScale = colors && colors->GetDataType() == VTK_UNSIGNED_CHAR ? 1.0 / 255.0 : 1.0;
+  KernelArrays& k = *this->Kernels;
+  const vtkIdType n = input->GetNumberOfPoints();
+  k.Positions.reserve(3 * n);
+  k.Colors.reserve(3 * n);
+  k.Covariances.reserve(6 * n);
+  k.Strengths.reserve(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (i % 65536 == 0)
+    {
+      this->UpdateProgress(static_cast<double>(i) / n);
+    }
+    double p[3];
+    input->GetPoint(i, p);
+    glm::dmat3 V(0.0);
+    double mass = 0.0; // the integral of the unnormalized Gaussian, (2 pi)^(3/2) sqrt|V|
+    bool valid = IsFinite(p, 3);
+    if (covariances)
+    {
+      double c[6];
+      covariances->GetTuple(i, c);
+      V = splat::SymmetricFromComponents(c);
+      valid = valid && IsFinite(c, 6) && IsPositiveSemiDefinite(V);
+      mass = splat::TwoPiToThreeHalves * std::sqrt(std::max(glm::determinant(V), 0.0));
+    }
+    else
+    {
+      glm::dvec3 s;
+      glm::dvec4 q;
+      scales->GetTuple(i, &s.x);
+      rotations->GetTuple(i, &q.x);
+      valid = valid && IsFinite(&s.x, 3) && IsFinite(&q.x, 4) && glm::length(q) > 0.0 &&
+        std::isfinite(glm::length(q));
+      if (valid)
+      {
+        V = splat::CovarianceFromScaleRotation(s, q);
+        mass = splat::TwoPiToThreeHalves * std::abs(s.x * s.y * s.z);
+      }
+    }
+    const double scalar = scalars ? scalars->GetComponent(i, 0) : 0.0;
+    std::size_t entry = 0;
+    double strength;
+    if (opacities)
+    {
+      strength = opacities->GetComponent(i, 0);
+      valid = valid && std::isfinite(strength);
+      strength = std::min(strength, 1.0);
+    }
+    else
+    {
+      valid = valid && std::isfinite(scalar);
+      entry = valid ? tables->Index(scalar) : 0;
+      strength = tables->Extinction[entry] * mass;
+    }
+    double rgb[4] = { 1.0, 1.0, 1.0, 1.0 };
+    if (colors)
+    {
+      colors->GetTuple(i, rgb);
+      valid = valid && IsFinite(rgb, 3);
+    }
+    else if (valid)
+    {
+      std::copy_n(tables->Colors.begin() + 3 * entry, 3, rgb);
+    }
+    if (!valid)
+    {
+      ++this->NumberOfInvalidKernels;
+      continue;
+    }
+    if (!(strength > 0.0))
+    {
+      ++this->NumberOfTransparentKernels;
+      continue;
+    }
+    const double components[6] = { V[0][0], V[1][0], V[2][0], V[1][1], V[2][1], V[2][2] };
+    for (int c = 0; c < 6; ++c)
+    {
+      k.Covariances.push_back(static_cast<float>(components[c]));
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      k.Positions.push_back(p[c]);
+      k.Colors.push_back(static_cast<float>(std::min(std::max(rgb[c] * colorScale, 0.0), 1.0)));
+    }
+    k.Strengths.push_back(static_cast<float>(strength));
+  }
+  this->UpdateProgress(1.0);
+  k.View.PeakOpacity = opacities != nullptr;
+  k.View.ListFrame = glm::dmat3(1.0);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkVolumeSplatMapper::SelectBackend(vtkRenderer* ren)
+{
+  const int backend = vtkSplatBackend::Resolve(this->Backend, ren->GetRenderWindow());
+  // The OpenGL backend plugs in here; until it lands, OpenGL requests render on the CPU.
+  return backend == vtkSplatBackend::OPENGL ? vtkSplatBackend::CPU : backend;
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatMapper::Render(vtkRenderer* ren, vtkVolume* volume)
+{
+  const auto start = std::chrono::steady_clock::now();
+  if (!this->GetDataSetInput())
+  {
+    vtkErrorMacro("No input.");
+    return;
+  }
+  this->GetInputAlgorithm()->Update();
+  vtkDataSet* input = this->GetDataSetInput();
+  vtkVolumeProperty* property = volume->GetProperty();
+  // Hardware picking of volumes arrives with the OpenGL backend.
+  if (!input || input->GetNumberOfPoints() == 0 || ren->GetSelector() || !property ||
+    !this->UpdateKernels(property))
+  {
+    return;
+  }
+  this->LastBackend = this->SelectBackend(ren);
+
+  int width, height, originX, originY;
+  ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkVolumeSplatRasterizer::Camera view;
+  view.ModelToEye = ToGlm(camera->GetModelViewTransformMatrix()) * ToGlm(volume->GetMatrix());
+  view.EyeToClip =
+    ToGlm(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1.0, 1.0));
+  view.Viewport = glm::ivec2(width, height);
+
+  // The opaque geometry is drawn: its depth ends each pixel's integration.
+  std::vector<float> sceneDepths;
+  this->Compositor->ReadDepths(ren, sceneDepths);
+  this->Rasterizer->SetSceneDepths(std::move(sceneDepths));
+  this->Rasterizer->Render(view);
+  // Depth 0 passes the compositor's depth test everywhere: occlusion is already applied, and
+  // the volume writes no depth.
+  const std::vector<float> depths(static_cast<std::size_t>(width) * height, 0.0f);
+  this->Compositor->Draw(ren, width, height, this->Rasterizer->GetColors().data(), depths.data(),
+    vtkOpenGLImageDepthCompositor::Blending::Translucent);
+
+  this->LastRenderTimeInMilliseconds =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+//------------------------------------------------------------------------------
+double* vtkVolumeSplatMapper::GetBounds()
+{
+  vtkMath::UninitializeBounds(this->Bounds);
+  vtkDataSet* input = this->GetDataSetInput();
+  if (!input || input->GetNumberOfPoints() == 0)
+  {
+    return this->Bounds;
+  }
+  this->GetInputAlgorithm()->Update();
+  // The largest standard deviation along each model axis, grown to the cutoff's extent.
+  glm::dvec3 sigma(0.0);
+  double bounds[6];
+  if (auto* image = vtkImageData::SafeDownCast(input))
+  {
+    image->GetBounds(bounds);
+    const double* spacing = image->GetSpacing();
+    const double largest = std::max({ spacing[0], spacing[1], spacing[2] });
+    sigma = glm::dvec3(splat::VoxelKernelSigma * largest);
+  }
+  else if (auto* points = vtkPointSet::SafeDownCast(input))
+  {
+    vtkDataArray* data = points->GetPoints()->GetData();
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      data->GetFiniteRange(bounds + 2 * axis, axis);
+    }
+    if (vtkDataArray* covariances = ArrayOf(input, this->CovarianceArrayName, 6))
+    {
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        const int component = axis == 0 ? 0 : (axis == 1 ? 3 : 5);
+        sigma[axis] = std::sqrt(std::max(covariances->GetFiniteRange(component)[1], 0.0));
+      }
+    }
+    else if (vtkDataArray* scales = ArrayOf(input, this->ScaleArrayName, 3))
+    {
+      double largest = 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double* range = scales->GetFiniteRange(c);
+        largest = std::max({ largest, std::abs(range[0]), std::abs(range[1]) });
+      }
+      sigma = glm::dvec3(largest);
+    }
+  }
+  else
+  {
+    return this->Bounds;
+  }
+  const double reach = std::sqrt(2.0 * this->GetCutoff());
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (!(bounds[2 * axis] <= bounds[2 * axis + 1]))
+    {
+      vtkMath::UninitializeBounds(this->Bounds);
+      return this->Bounds;
+    }
+    this->Bounds[2 * axis] = bounds[2 * axis] - reach * sigma[axis];
+    this->Bounds[2 * axis + 1] = bounds[2 * axis + 1] + reach * sigma[axis];
+  }
+  return this->Bounds;
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Compositor->ReleaseGraphicsResources(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  auto name = [](const char* s) { return s ? s : "(none)"; };
+  os << indent << "OrderingMode: " << this->GetOrderingMode() << "\n";
+  os << indent << "BlendThreshold: " << this->GetBlendThreshold() << "\n";
+  os << indent << "Cutoff: " << this->GetCutoff() << "\n";
+  os << indent << "Backend: " << vtkSplatBackend::GetBackendAsString(this->Backend) << "\n";
+  os << indent << "LastBackend: " << vtkSplatBackend::GetBackendAsString(this->LastBackend)
+     << "\n";
+  os << indent << "CovarianceArrayName: " << name(this->CovarianceArrayName) << "\n";
+  os << indent << "ScaleArrayName: " << name(this->ScaleArrayName) << "\n";
+  os << indent << "RotationArrayName: " << name(this->RotationArrayName) << "\n";
+  os << indent << "ColorArrayName: " << name(this->ColorArrayName) << "\n";
+  os << indent << "OpacityArrayName: " << name(this->OpacityArrayName) << "\n";
+  os << indent << "NumberOfKernels: " << this->NumberOfKernels << "\n";
+  os << indent << "NumberOfTransparentKernels: " << this->NumberOfTransparentKernels << "\n";
+  os << indent << "NumberOfInvalidKernels: " << this->NumberOfInvalidKernels << "\n";
+  os << indent << "LastRenderTimeInMilliseconds: " << this->LastRenderTimeInMilliseconds << "\n";
+  os << indent << "Rasterizer:\n";
+  this->Rasterizer->PrintSelf(os, indent.GetNextIndent());
+}

@@ -1,0 +1,212 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkVolumeSplatRasterizer
+ * @brief   multithreaded CPU rasterizer for EWA volume splatting ordered by three axis lists
+ *
+ * vtkVolumeSplatRasterizer is the CPU backend of vtkVolumeSplatMapper. It takes 3D Gaussian
+ * kernels (positions, covariances, emitted colors, strengths) and a camera, and produces a
+ * premultiplied RGBA image by emission-absorption compositing of the kernels' footprints
+ * (SplatVolumeKernel.h) front to back.
+ *
+ * Visibility ordering follows Hofsetz and Max (paper 003): the kernels are kept in three lists
+ * sorted along the X, Y and Z axes of the data's frame (for image data the index axes, whose
+ * lists are the grid's sheets and need no sort). Each pixel's view ray picks its lists from its
+ * direction d in that frame; a list a is traversed in ascending order for pixels with d_a > 0
+ * and descending for d_a < 0, which is front to back along those rays. Modes:
+ * - Blended: every list whose weight w_a = (|d_a| / max|d| - h) / (1 - h) is positive at a pixel
+ *   is composited into its own buffer, and the buffers are merged per pixel by
+ *   C = sum C_a w_a^2 / sum w_a^2 (paper 003, eq. 1);
+ * - Clipped: each pixel from the list of its dominant axis only (paper 003, section 5);
+ * - SingleAxis: one list for the whole frame, the central ray's (Westover);
+ * - DepthSorted: one global front-to-back sort of the kernels by eye-space depth per frame.
+ *
+ * A frame has four steps: per-pixel list weights; setup of every kernel, parallel over kernels
+ * (footprint, bounding box, skip reasons); binning into 16-row bands in list order, for each list
+ * some pixel needs, keeping only the kernels that overlap the band's pixels of that list; and
+ * compositing, parallel over bands. A band's pixels see their kernels in list order whatever the
+ * number of threads, so the image does not depend on it. Pixels stop integrating once their
+ * accumulated opacity reaches 1 - 1/512 (early ray termination) or the kernel's center lies
+ * behind the opaque scene's depth.
+ *
+ * Kernels are not validated here: the caller passes finite data only.
+ *
+ * @sa vtkVolumeSplatMapper
+ */
+#ifndef vtkVolumeSplatRasterizer_h
+#define vtkVolumeSplatRasterizer_h
+
+#include "SplatRenderingModule.h" // For export macro
+#include "vtkObject.h"
+
+#include <glm/glm.hpp> // For the camera matrices
+
+#include <array>   // For the lists
+#include <cstdint> // For std::uint8_t
+#include <vector>  // For the frame buffer
+
+class SPLATRENDERING_EXPORT vtkVolumeSplatRasterizer : public vtkObject
+{
+public:
+  static vtkVolumeSplatRasterizer* New();
+  vtkTypeMacro(vtkVolumeSplatRasterizer, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Visibility orderings (see the class comment); the values of vtkVolumeSplatMapper's modes.
+  enum OrderingModes
+  {
+    BLENDED = 0,
+    CLIPPED = 1,
+    SINGLE_AXIS = 2,
+    DEPTH_SORTED = 3,
+  };
+
+  /// The index of the per-frame depth-sorted list in the per-list statistics.
+  static constexpr int DepthList = 3;
+
+  ///@{
+  /**
+   * Visibility ordering. Default BLENDED.
+   */
+  vtkSetClampMacro(OrderingMode, int, BLENDED, DEPTH_SORTED);
+  vtkGetMacro(OrderingMode, int);
+  ///@}
+
+  ///@{
+  /**
+   * The blending threshold h of the BLENDED mode, in [0, 0.99]. Default 0.85 (paper 003).
+   */
+  vtkSetClampMacro(BlendThreshold, double, 0.0, 0.99);
+  vtkGetMacro(BlendThreshold, double);
+  ///@}
+
+  ///@{
+  /**
+   * Cutoff on the footprint exponent. Default splat::DefaultVolumeCutoff (4.5).
+   */
+  vtkSetClampMacro(Cutoff, double, 1e-3, 50.0);
+  vtkGetMacro(Cutoff, double);
+  ///@}
+
+  /**
+   * The camera: model-to-eye and eye-to-clip (projection) matrices and the viewport in pixels.
+   */
+  struct Camera
+  {
+    glm::dmat4 ModelToEye{ 1.0 };
+    glm::dmat4 EyeToClip{ 1.0 };
+    glm::ivec2 Viewport{ 0 };
+  };
+
+  /**
+   * Kernels as arrays of Count entries, all in model coordinates, all with a positive strength.
+   * - Strengths: with PeakOpacity off (the density model), the optical depth of the kernel
+   *   integrated over space (extinction per unit length times the kernel's volume), so that a
+   *   ray's optical depth is Strength times the footprint; with PeakOpacity on (the convention
+   *   of 3D Gaussian Splatting), the opacity at the footprint's center,
+   *   alpha(x) = Strength exp(-beta(x)), without amplitude normalization.
+   * - Covariances: six components (xx, xy, xz, yy, yz, zz) per kernel, or null when every
+   *   kernel has SharedCovariance (image data).
+   * - ListFrame: the columns are the unit axes of the lists' frame in model coordinates.
+   * - GridIds and GridDimensions: for image data, each kernel's voxel id i + nx (j + ny k),
+   *   ascending; the lists are then the grid's sheets and are not sorted. Null for point sets,
+   *   whose lists are sorted by position.
+   */
+  struct Kernels
+  {
+    std::size_t Count = 0;
+    const double* Positions = nullptr;
+    const float* Covariances = nullptr;
+    glm::dmat3 SharedCovariance{ 1.0 };
+    const float* Colors = nullptr;
+    const float* Strengths = nullptr;
+    bool PeakOpacity = false;
+    glm::dmat3 ListFrame{ 1.0 };
+    const vtkIdType* GridIds = nullptr;
+    glm::ivec3 GridDimensions{ 0 };
+  };
+
+  /**
+   * Sets the kernels: the arrays must stay valid until the next call. Clears the lists, which
+   * are rebuilt when a frame needs them.
+   */
+  void SetKernels(const Kernels& kernels);
+
+  /**
+   * Window-space depth in [0, 1] of the opaque scene per pixel (row by row from the bottom);
+   * kernels whose center lies behind it do not reach the pixel. Empty (the default) for none.
+   */
+  void SetSceneDepths(std::vector<float> depths) { this->SceneDepths = std::move(depths); }
+
+  /**
+   * Renders the kernels. After it, GetColors() holds the image and the statistics what was done.
+   */
+  void Render(const Camera& camera);
+
+  /**
+   * Per pixel, row by row from the bottom: premultiplied RGBA, alpha 0 where no kernel reaches
+   * the pixel.
+   */
+  const std::vector<std::uint8_t>& GetColors() const { return this->Colors; }
+
+  /**
+   * The same before quantization, RGBA floats.
+   */
+  const std::vector<float>& GetImage() const { return this->Image; }
+
+  ///@{
+  /**
+   * What the last frame did (paper 003, table 1): whether each list (0, 1, 2 for the X, Y and Z
+   * axes, DepthList for the depth-sorted one) was traversed and how many kernels it splatted;
+   * kernels left out because their cutoff ellipsoid reaches the near plane or lies behind the
+   * eye, or because they lie outside the view frustum; and the comparison sorts done (list
+   * builds of point sets and per-frame depth sorts; never for image data).
+   */
+  bool GetListTraversed(int list) const;
+  vtkIdType GetProjectedCount(int list) const;
+  vtkIdType GetProjectedCount() const;
+  vtkGetMacro(NearPlaneCount, vtkIdType);
+  vtkGetMacro(FrustumCulledCount, vtkIdType);
+  vtkGetMacro(SortCount, vtkIdType);
+  vtkGetMacro(ListBuildCount, vtkIdType);
+  ///@}
+
+  // Per-frame data of the implementation; declared here so that its helper functions can name
+  // them.
+  struct ScreenKernel;
+  struct PixelLists;
+
+protected:
+  vtkVolumeSplatRasterizer();
+  ~vtkVolumeSplatRasterizer() override;
+
+  /// Builds list `list` if it is missing: sheets of the grid, or a sort by position.
+  void BuildList(int list);
+  /// The per-frame depth order of the kept kernels.
+  void BuildDepthList();
+
+  int OrderingMode = BLENDED;
+  double BlendThreshold = 0.85;
+  double Cutoff;
+
+  Kernels Input;
+  std::array<std::vector<vtkIdType>, 4> Lists;
+  std::array<bool, 4> Traversed{};
+  std::array<vtkIdType, 4> Projected{};
+  vtkIdType NearPlaneCount = 0;
+  vtkIdType FrustumCulledCount = 0;
+  vtkIdType SortCount = 0;
+  vtkIdType ListBuildCount = 0;
+
+  std::vector<float> SceneDepths;
+  std::vector<float> Image;
+  std::vector<std::uint8_t> Colors;
+
+private:
+  vtkVolumeSplatRasterizer(const vtkVolumeSplatRasterizer&) = delete;
+  void operator=(const vtkVolumeSplatRasterizer&) = delete;
+
+  struct Internals;
+  Internals* Internal;
+};
+
+#endif

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Volume scenes and image measures shared by the volume splatting tests (and usable from
+// programs): a Gaussian blob whose image is analytic, transfer functions, image differences.
+#ifndef SplatVolumeTestUtilities_h
+#define SplatVolumeTestUtilities_h
+
+#include "SplatTestUtilities.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkRenderer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <cmath>
+
+namespace splattest
+{
+/**
+ * A cube of n^3 voxels of spacing h centered at the origin holding the extinction of a Gaussian
+ * blob, tau(x) = peak exp(-|x|^2 / (2 sigma^2)), as float scalars.
+ */
+inline vtkSmartPointer<vtkImageData> GaussianBlob(int n, double h, double sigma, double peak)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(n, n, n);
+  image->SetSpacing(h, h, h);
+  const double o = -0.5 * (n - 1) * h;
+  image->SetOrigin(o, o, o);
+  vtkNew<vtkFloatArray> scalars;
+  scalars->SetName("Extinction");
+  scalars->SetNumberOfTuples(static_cast<vtkIdType>(n) * n * n);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        const double x = o + i * h, y = o + j * h, z = o + k * h;
+        scalars->SetValue(i + n * (j + n * k),
+          static_cast<float>(peak * std::exp(-(x * x + y * y + z * z) / (2.0 * sigma * sigma))));
+      }
+  image->GetPointData()->SetScalars(scalars);
+  return image;
+}
+
+/**
+ * A volume property whose scalar is the extinction itself: the opacity transfer function is
+ * alpha(s) = 1 - exp(-s unitDistance), sampled finely enough to be linear in s to 1e-4, and the
+ * color constant. Shading off.
+ */
+inline vtkSmartPointer<vtkVolumeProperty> ExtinctionProperty(
+  double maximum, double unitDistance, const double rgb[3])
+{
+  vtkNew<vtkPiecewiseFunction> opacity;
+  const int samples = 256;
+  for (int i = 0; i <= samples; ++i)
+  {
+    const double s = maximum * i / samples;
+    opacity->AddPoint(s, 1.0 - std::exp(-s * unitDistance));
+  }
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(0.0, rgb[0], rgb[1], rgb[2]);
+  color->AddRGBPoint(maximum, rgb[0], rgb[1], rgb[2]);
+  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
+  property->SetScalarOpacity(opacity);
+  property->SetColor(color);
+  property->SetScalarOpacityUnitDistance(unitDistance);
+  property->ShadeOff();
+  property->SetInterpolationTypeToLinear();
+  return property;
+}
+
+/**
+ * The exact image of the blob of GaussianBlob() over a black background: per pixel ray, the
+ * optical depth is peak sigma sqrt(2 pi) exp(-d^2 / (2 sigma^2)) with d the ray's distance to
+ * the center, and the color rgb (1 - exp(-depth)). RGB floats in [0, 1], rows from the bottom.
+ */
+inline std::vector<double> BlobImage(
+  vtkRenderer* renderer, double sigma, double peak, const double rgb[3])
+{
+  int* size = renderer->GetRenderWindow()->GetSize();
+  std::vector<double> image(3 * size[0] * size[1]);
+  double eye[3];
+  renderer->GetActiveCamera()->GetPosition(eye);
+  for (int y = 0; y < size[1]; ++y)
+    for (int x = 0; x < size[0]; ++x)
+    {
+      renderer->SetDisplayPoint(x + 0.5, y + 0.5, 0.0);
+      renderer->DisplayToWorld();
+      double p[4];
+      renderer->GetWorldPoint(p);
+      double d[3] = { p[0] / p[3] - eye[0], p[1] / p[3] - eye[1], p[2] / p[3] - eye[2] };
+      vtkMath::Normalize(d);
+      // Distance from the center (the origin) to the ray eye + t d.
+      const double t = -vtkMath::Dot(eye, d);
+      double closest[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        closest[c] = eye[c] + t * d[c];
+      }
+      const double r2 = vtkMath::Dot(closest, closest);
+      const double depth =
+        peak * sigma * std::sqrt(2.0 * vtkMath::Pi()) * std::exp(-r2 / (2.0 * sigma * sigma));
+      for (int c = 0; c < 3; ++c)
+      {
+        image[3 * (y * size[0] + x) + c] = rgb[c] * -std::expm1(-depth);
+      }
+    }
+  return image;
+}
+
+/// The image's RGB as floats in [0, 1].
+inline std::vector<double> ToRGB(vtkImageData* image)
+{
+  const int* dims = image->GetDimensions();
+  std::vector<double> rgb(3 * dims[0] * dims[1]);
+  auto* data = static_cast<unsigned char*>(image->GetScalarPointer());
+  const int components = image->GetNumberOfScalarComponents();
+  for (int p = 0; p < dims[0] * dims[1]; ++p)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb[3 * p + c] = data[components * p + c] / 255.0;
+    }
+  }
+  return rgb;
+}
+
+/// Root mean square difference of two RGB images, over all channels of all pixels.
+inline double RMSE(const std::vector<double>& a, const std::vector<double>& b)
+{
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    sum += (a[i] - b[i]) * (a[i] - b[i]);
+  }
+  return std::sqrt(sum / a.size());
+}
+}
+
+#endif

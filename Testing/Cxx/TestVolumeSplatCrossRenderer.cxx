@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Cross-renderer checks of vtkVolumeSplatMapper at 512 x 512:
+// 1. a Gaussian blob of extinction, whose image is analytic (SplatVolumeTestUtilities.h),
+//    against that image, with vtkFixedPointVolumeRayCastMapper's error on the same scene
+//    printed for comparison;
+// 2. the MRI head ch2.nii.gz (mricron-data) with one transfer function through both mappers at
+//    the same camera (skipped with 125 when the file is absent).
+// The RMSE bounds (MAX_BLOB_RMSE, MAX_MRI_RMSE) and their justification are in CMakeLists.txt.
+// Each mapper's render time is printed.
+#include "SplatVolumeTestUtilities.h"
+#include "vtkVolumeSplatMapper.h"
+
+#include "vtkFixedPointVolumeRayCastMapper.h"
+#include "vtkNIFTIImageReader.h"
+
+#include <chrono>
+#include <cstdio>
+
+namespace
+{
+constexpr int Size = 512;
+
+struct Rendered
+{
+  std::vector<double> RGB;
+  double Milliseconds;
+};
+
+// Renders the image through the mapper from the camera set by `place`; the time is the best of
+// three renders after the first (which builds the kernels or the ray caster's tables).
+template <typename Place>
+Rendered Render(vtkAbstractVolumeMapper* mapper, vtkImageData* image, vtkVolumeProperty* property,
+  Place place)
+{
+  mapper->SetInputDataObject(image);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddVolume(volume);
+  renderer->SetBackground(0.0, 0.0, 0.0);
+  auto window = splattest::MakeRenderWindow(Size, Size);
+  window->AddRenderer(renderer);
+  place(renderer.Get());
+  window->Render();
+  double best = 1e300;
+  for (int i = 0; i < 3; ++i)
+  {
+    volume->Modified();
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    best = std::min(best,
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  return { splattest::ToRGB(splattest::Capture(window)), best };
+}
+}
+
+int main(int, char*[])
+{
+  int failures = 0;
+
+  // 1. The blob: sigma 0.25 on a 64^3 grid of spacing 1/32 (8 voxels per sigma), peak optical
+  // depth through the center 6 sigma sqrt(2 pi) 0.25 = 3.8.
+  {
+    const double sigma = 0.25, peak = 6.0, rgb[3] = { 1.0, 0.7, 0.4 };
+    auto image = splattest::GaussianBlob(64, 1.0 / 32.0, sigma, peak);
+    auto property = splattest::ExtinctionProperty(peak, 1.0 / 32.0, rgb);
+    std::vector<double> exact;
+    auto place = [&](vtkRenderer* renderer)
+    {
+      vtkCamera* camera = renderer->GetActiveCamera();
+      camera->SetPosition(0.9, 0.7, 2.6);
+      camera->SetFocalPoint(0.0, 0.0, 0.0);
+      camera->SetViewUp(0.0, 1.0, 0.0);
+      camera->SetViewAngle(30.0);
+      renderer->ResetCameraClippingRange();
+      renderer->GetRenderWindow()->Render();
+      exact = splattest::BlobImage(renderer, sigma, peak, rgb);
+    };
+    vtkNew<vtkVolumeSplatMapper> splat;
+    const Rendered ours = Render(splat, image, property, place);
+    const double ourError = splattest::RMSE(ours.RGB, exact);
+    vtkNew<vtkFixedPointVolumeRayCastMapper> rayCast;
+    const Rendered reference = Render(rayCast, image, property, place);
+    const double rayCastError = splattest::RMSE(reference.RGB, exact);
+    std::printf("blob RMSE against the analytic image: splat %.5f (%.1f ms), fixed-point ray cast "
+                "%.5f (%.1f ms)\n",
+      ourError, ours.Milliseconds, rayCastError, reference.Milliseconds);
+    if (!(ourError <= MAX_BLOB_RMSE))
+    {
+      std::fprintf(stderr, "blob RMSE %.5f above the bound %.5f\n", ourError, MAX_BLOB_RMSE);
+      ++failures;
+    }
+  }
+
+  // 2. The MRI head.
+  const std::string path = "/usr/share/mricron/templates/ch2.nii.gz";
+  if (!splattest::FileExists(path))
+  {
+    std::printf("%s is absent (Debian package mricron-data): MRI comparison skipped\n",
+      path.c_str());
+    return failures ? EXIT_FAILURE : splattest::SkipReturnCode;
+  }
+  vtkNew<vtkNIFTIImageReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* head = reader->GetOutput();
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 0.0);
+  opacity->AddPoint(40.0, 0.0);
+  opacity->AddPoint(90.0, 0.05);
+  opacity->AddPoint(255.0, 0.2);
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(0.0, 0.0, 0.0, 0.0);
+  color->AddRGBPoint(60.0, 0.8, 0.4, 0.3);
+  color->AddRGBPoint(140.0, 1.0, 0.9, 0.8);
+  color->AddRGBPoint(255.0, 1.0, 1.0, 1.0);
+  vtkNew<vtkVolumeProperty> property;
+  property->SetScalarOpacity(opacity);
+  property->SetColor(color);
+  property->SetScalarOpacityUnitDistance(1.0);
+  property->SetInterpolationTypeToLinear();
+  property->ShadeOff();
+  auto place = [](vtkRenderer* renderer)
+  {
+    renderer->ResetCamera();
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->Elevation(-70.0);
+    camera->OrthogonalizeViewUp();
+    camera->Azimuth(35.0);
+    renderer->ResetCameraClippingRange();
+  };
+  vtkNew<vtkVolumeSplatMapper> splat;
+  const Rendered ours = Render(splat, head, property, place);
+  vtkNew<vtkFixedPointVolumeRayCastMapper> rayCast;
+  const Rendered reference = Render(rayCast, head, property, place);
+  const double error = splattest::RMSE(ours.RGB, reference.RGB);
+  std::printf("MRI RMSE splat vs fixed-point ray cast: %.5f; %lld kernels of %d voxels, %lld "
+              "projected; splat %.1f ms, ray cast %.1f ms at %dx%d\n",
+    error, static_cast<long long>(splat->GetNumberOfKernels()),
+    head->GetNumberOfPoints() > 0 ? static_cast<int>(head->GetNumberOfPoints()) : 0,
+    static_cast<long long>(splat->GetNumberOfProjectedKernels()), ours.Milliseconds,
+    reference.Milliseconds, Size, Size);
+  if (!(error <= MAX_MRI_RMSE))
+  {
+    std::fprintf(stderr, "MRI RMSE %.5f above the bound %.5f\n", error, MAX_MRI_RMSE);
+    ++failures;
+  }
+  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+}
