@@ -506,11 +506,11 @@ void vtkOpenGLSurfaceSplatRasterizer::RenderSelection(vtkRenderer* renderer,
   }
   if (internal.PointIdsVersion != internal.Version)
   {
-    // (id + 1) in two exact 24-bit halves: 0 is the selector's "nothing".
+    // The ids in two exact 24-bit halves (the actor pass tells hits from the background).
     std::vector<float> ids(2 * pointIds.size());
     for (std::size_t i = 0; i < pointIds.size(); ++i)
     {
-      const long long id = static_cast<long long>(pointIds[i]) + 1;
+      const long long id = static_cast<long long>(pointIds[i]);
       ids[2 * i] = static_cast<float>(id & 0xffffff);
       ids[2 * i + 1] = static_cast<float>((id >> 24) & 0xffffff);
     }
@@ -530,7 +530,7 @@ void vtkOpenGLSurfaceSplatRasterizer::RenderSelection(vtkRenderer* renderer,
   program->SetUniformi("filterMode",
     this->ApproximateFilter ? ApproximateFilterMode : static_cast<int>(settings->GetFilter()));
   program->SetUniformi("cullBackFaces", settings->GetBackfaceCulling());
-  program->SetUniformf("depthThreshold", 0.0f);
+  program->SetUniformf("depthThreshold", static_cast<float>(settings->GetDepthThreshold()));
   const float origin[2] = { static_cast<float>(originX), static_cast<float>(originY) };
   program->SetUniform2f("viewportOrigin", origin);
   program->SetUniformi("peel", 0);

@@ -8,7 +8,8 @@
 //   pass 0, visibility: depth of the intersection plus the splat's threshold, no color;
 //   pass 1, attributes: weight-times-color, weight, weight-times-normal, weight-times-opacity
 //           and weight-times-depth, added up over the splats within the threshold of pass 0;
-//   pass 2, selection: the hardware selector's color, at the window depth of the intersection.
+//   pass 2, selection: the hardware selector's color, at the window depth of the intersection
+//           pulled forward by a share of the threshold that shrinks with the kernel's exponent.
 
 flat in vec2 splatCenter;
 flat in vec3 splatConic;
@@ -94,7 +95,11 @@ void main()
   }
   if (splatPass == 2)
   {
-    gl_FragDepth = windowDepth(t);
+    // Pulled toward the eye by up to the depth threshold, less the farther from the kernel's
+    // center: within a surface, the splat whose kernel weighs most at the pixel wins; the
+    // surface passes the depth the render before the selection left (the selector preserves
+    // it), which lies within the threshold behind its front; a surface in front wins.
+    gl_FragDepth = windowDepth(t - splatThreshold * (1.0 - beta / cutoff));
     gl_FragData[0] = vec4(selectionIdPass == 0 ? selectionColor
         : idColor(selectionIdPass == 1 ? splatPointId.x : splatPointId.y), 1.0);
     return;

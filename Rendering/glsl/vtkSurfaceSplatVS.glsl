@@ -9,7 +9,7 @@ in vec3 axis0;
 in vec3 axis1;
 in vec3 normal;
 in vec4 color; // rgb, opacity
-in vec2 pointId; // (id + 1) in two 24-bit halves; selection passes only
+in vec2 pointId; // the input point's id in two 24-bit halves; selection passes only
 
 uniform mat4 modelToEye;
 uniform mat3 normalToEye;

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Occlusion between splats and triangles: a splatted plane z = x / 2 (red) interpenetrates a
 // triangle plane z = 0 (green) along the y axis. Seen from +z, pixels with x > 0 must show the
-// splats and pixels with x < 0 the triangles, whichever actor is drawn first.
+// splats and pixels with x < 0 the triangles, whichever actor is drawn first, with either
+// backend.
 #include "SplatTestUtilities.h"
+#include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
 
 #include "vtkActor.h"
@@ -26,9 +28,10 @@ vtkSmartPointer<vtkActor> FlatActor(vtkMapper* mapper, double r, double g, doubl
 }
 
 // Renders with the splats added first or second; returns the number of wrong probe pixels.
-int CountWrongPixels(bool splatsFirst)
+int CountWrongPixels(bool splatsFirst, int backend)
 {
   vtkNew<vtkSurfaceSplatMapper> splatMapper;
+  splatMapper->SetBackend(backend);
   const double center[3] = { 0.0, 0.0, 0.0 };
   const double u[3] = { 0.025, 0.0, 0.0125 }; // the plane z = x / 2
   const double v[3] = { 0.0, 0.025, 0.0 };
@@ -69,8 +72,9 @@ int CountWrongPixels(bool splatsFirst)
       const bool meshWins = rgb[1] > 0.9 && rgb[0] < 0.1;
       if ((x > 0 && !splatWins) || (x < 0 && !meshWins))
       {
-        std::printf("splats %s: wrong color (%.2f %.2f %.2f) at x = %.1f, y = %.1f\n",
-          splatsFirst ? "first" : "second", rgb[0], rgb[1], rgb[2], x, y);
+        std::printf("%s, splats %s: wrong color (%.2f %.2f %.2f) at x = %.1f, y = %.1f\n",
+          vtkSplatBackend::GetBackendAsString(backend), splatsFirst ? "first" : "second",
+          rgb[0], rgb[1], rgb[2], x, y);
         ++wrong;
       }
     }
@@ -81,7 +85,11 @@ int CountWrongPixels(bool splatsFirst)
 
 int main(int, char*[])
 {
-  const int wrong = CountWrongPixels(true) + CountWrongPixels(false);
-  std::printf("%d wrong probe pixels of 48\n", wrong);
+  int wrong = 0;
+  for (int backend : { vtkSplatBackend::CPU, vtkSplatBackend::OPENGL })
+  {
+    wrong += CountWrongPixels(true, backend) + CountWrongPixels(false, backend);
+  }
+  std::printf("%d wrong probe pixels of 96\n", wrong);
   return wrong == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
