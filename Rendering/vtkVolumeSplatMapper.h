@@ -62,6 +62,7 @@
 
 #include "SplatRenderingModule.h" // For export macro
 #include "vtkAbstractVolumeMapper.h"
+#include "vtkDataSet.h" // For SetInputData
 #include "vtkNew.h" // For vtkNew
 
 #include <memory> // For std::unique_ptr
@@ -78,6 +79,11 @@ public:
   static vtkVolumeSplatMapper* New();
   vtkTypeMacro(vtkVolumeSplatMapper, vtkAbstractVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Sets the input: a vtkImageData or another vtkPointSet (see the class comment).
+   */
+  void SetInputData(vtkDataSet* input) { this->SetInputDataInternal(0, input); }
 
   /**
    * Visibility orderings (paper 003).
