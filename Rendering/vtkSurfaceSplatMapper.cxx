@@ -16,6 +16,7 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
+#include "SplatVTKConversions.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderPass.h"
@@ -65,18 +66,7 @@ struct vtkSurfaceSplatMapper::SurfelArrays
 
 namespace
 {
-glm::dmat4 ToGlm(vtkMatrix4x4* m)
-{
-  glm::dmat4 result;
-  for (int row = 0; row < 4; ++row)
-  {
-    for (int column = 0; column < 4; ++column)
-    {
-      result[column][row] = m->GetElement(row, column);
-    }
-  }
-  return result;
-}
+using splat::ToGlm;
 
 // The actor's model-to-eye and the camera's projection over the renderer's viewport.
 vtkSurfaceSplatRasterizer::Camera ViewOf(vtkRenderer* ren, vtkActor* actor)

@@ -12,6 +12,7 @@
 #include "vtkImageData.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
+#include "SplatVTKConversions.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
@@ -70,18 +71,7 @@ struct vtkVolumeSplatMapper::KernelArrays
 
 namespace
 {
-glm::dmat4 ToGlm(vtkMatrix4x4* m)
-{
-  glm::dmat4 result;
-  for (int row = 0; row < 4; ++row)
-  {
-    for (int column = 0; column < 4; ++column)
-    {
-      result[column][row] = m->GetElement(row, column);
-    }
-  }
-  return result;
-}
+using splat::ToGlm;
 
 // The transfer functions of component 0 sampled over the scalar range: one entry per integer
 // for integer scalars with at most 65536 values (exact), 65536 entries otherwise.
