@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// splat_bench: a benchmark, not a test. Renders the same points with vtkSurfaceSplatMapper and
-// with its peer vtkPointGaussianMapper, in the same run, and prints one CSV row per case:
-// milliseconds per frame (median), splats per second, the process's peak memory so far, what our
-// mapper culled and skipped, and the memory per splat that the case added.
+// splat_bench: a benchmark, not a test. Renders the same points with vtkSurfaceSplatMapper (on
+// each backend) and with its peer vtkPointGaussianMapper, in the same run, and prints one CSV row
+// per case: milliseconds per frame (median), splats per second, the process's peak memory so
+// far, what our mapper culled and skipped, and the memory per splat that the case added.
 // Run `splat_bench --help` for the options.
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
+#include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
 #include "vtkSurfelSphereSource.h"
@@ -56,14 +57,17 @@ vtkPointGaussianMapper (opaque disks of the same radius, emissive off), offscree
 prints CSV rows:
   scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb,
   rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat
-Settings: vtkSurfaceSplatMapper runs as "default" on every scene and, on the sphere (closed,
-outward normals), also as "backface" (the actor's BackfaceCulling on); vtkPointGaussianMapper
-runs as "disk".
+Settings: vtkSurfaceSplatMapper runs on each backend (the CPU rasterizer, then OpenGL) as
+"default" (exact EWA) on every scene and, on the sphere (closed, outward normals), also as
+"backface" (the actor's BackfaceCulling on); its OpenGL backend also as "approximate" (the
+APPROXIMATE filter mode); vtkPointGaussianMapper runs as "disk". Under a software OpenGL
+renderer (Mesa's llvmpipe) the OpenGL rows measure that renderer, not a GPU.
 ms_per_frame is the median over the timed frames after one warm-up frame; peak_rss_mb is the
 peak resident memory of the whole process so far (cases run from small to large).
 rendered .. skipped are vtkSurfaceSplatMapper's counts for the last frame (splats drawn, culled
 outside the frustum, culled as back faces, left out as negligible, input points skipped as
-invalid); empty for vtkPointGaussianMapper, which does not report them.
+invalid); the OpenGL backend culls in its vertex shader without counting, so its splat counts
+are -1; empty for vtkPointGaussianMapper, which does not report them.
 bytes_per_splat is the resident memory the case added (its data, mapper and frames) per point:
 the current resident set size (/proc/self/statm) after the case's frames minus the one before
 its data was built, divided by the number of points. A one-line summary per case goes to stderr.
@@ -74,6 +78,7 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
   --sizes LIST         square image sizes in pixels (default 512,1024)
   --mappers LIST       splat (vtkSurfaceSplatMapper), pointgaussian (vtkPointGaussianMapper)
                        (default splat,pointgaussian)
+  --backends LIST      vtkSurfaceSplatMapper's backends: cpu, opengl (default cpu,opengl)
   --frames N           at most N timed frames per case (default 10)
   --budget SECONDS     time a case's frames within this many seconds: after the first timed
                        frame, another is timed only while the elapsed time plus the last
@@ -93,6 +98,7 @@ struct Options
   std::vector<long long> Points = { 100000, 1000000, 5000000 };
   std::vector<long long> Sizes = { 512, 1024 };
   std::vector<std::string> Mappers = { "splat", "pointgaussian" };
+  std::vector<std::string> Backends = { "cpu", "opengl" };
   int Frames = 10;
   double Budget = 10.0;
   std::string Output = "output/bench/bench.csv";
@@ -134,6 +140,10 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--mappers",
       [&](const std::string& name, const std::string& value) {
         options.Mappers = SplitList(name, value, { "splat", "pointgaussian" });
+      } },
+    { "--backends",
+      [&](const std::string& name, const std::string& value) {
+        options.Backends = SplitList(name, value, { "cpu", "opengl" });
       } },
     { "--frames",
       [&](const std::string& name, const std::string& value)
@@ -183,27 +193,64 @@ vtkSmartPointer<vtkPolyData> BunnySurfels(const std::string& file)
 
 struct MapperKind
 {
-  const char* Name;    // the option's name
-  const char* Class;   // the VTK class (vtkPointGaussianMapper::New gives an OpenGL subclass)
-  const char* Backend; // what draws the splats
-  const char* Setting;
-  bool BackfaceCulling; // the actor property's BackfaceCulling
-  bool ClosedOnly;      // only for closed, outward-oriented scenes (the sphere)
+  std::string Name;    // the --mappers name
+  std::string Class;   // the VTK class (vtkPointGaussianMapper::New gives an OpenGL subclass)
+  std::string Backend; // what draws the splats
+  std::string Setting;
+  bool BackfaceCulling = false;             // the actor property's BackfaceCulling
+  bool ClosedOnly = false;                  // only for closed, outward-oriented scenes (the sphere)
+  int SplatBackend = vtkSplatBackend::AUTO; // vtkSurfaceSplatMapper's SetBackend
+  int FilterMode = vtkSurfaceSplatMapper::EWA;
 };
 
-// Cases per size, in this order, for the mappers chosen with --mappers.
-const MapperKind Kinds[] = {
-  { "splat", "vtkSurfaceSplatMapper", "CPU", "default", false, false },
-  { "splat", "vtkSurfaceSplatMapper", "CPU", "backface", true, true },
-  { "pointgaussian", "vtkPointGaussianMapper", "OpenGL", "disk", false, false },
-};
+// Cases per size, in this order, for the mappers and backends chosen with --mappers and
+// --backends: vtkSurfaceSplatMapper's settings on each backend, then the peer.
+std::vector<MapperKind> Kinds(const Options& options)
+{
+  const auto chosen = [](const std::vector<std::string>& list, const std::string& name)
+  { return std::find(list.begin(), list.end(), name) != list.end(); };
+  std::vector<MapperKind> kinds;
+  if (chosen(options.Mappers, "splat"))
+  {
+    for (int backend : { vtkSplatBackend::CPU, vtkSplatBackend::OPENGL })
+    {
+      const std::string name = vtkSplatBackend::GetBackendAsString(backend);
+      if (!chosen(options.Backends, vtksys::SystemTools::LowerCase(name)))
+      {
+        continue;
+      }
+      const MapperKind splat{ "splat", "vtkSurfaceSplatMapper", name, "default", false, false,
+        backend, vtkSurfaceSplatMapper::EWA };
+      kinds.push_back(splat);
+      // APPROXIMATE is OpenGL only: the CPU would draw EWA again.
+      if (backend == vtkSplatBackend::OPENGL)
+      {
+        MapperKind approximate = splat;
+        approximate.Setting = "approximate";
+        approximate.FilterMode = vtkSurfaceSplatMapper::APPROXIMATE;
+        kinds.push_back(approximate);
+      }
+      MapperKind backface = splat;
+      backface.Setting = "backface";
+      backface.BackfaceCulling = backface.ClosedOnly = true;
+      kinds.push_back(backface);
+    }
+  }
+  if (chosen(options.Mappers, "pointgaussian"))
+  {
+    kinds.push_back({ "pointgaussian", "vtkPointGaussianMapper", "OpenGL", "disk" });
+  }
+  return kinds;
+}
 
 vtkSmartPointer<vtkMapper> MakeMapper(const MapperKind& kind, vtkPolyData* surfels)
 {
-  if (std::string(kind.Name) == "splat")
+  if (kind.Name == "splat")
   {
     vtkNew<vtkSurfaceSplatMapper> mapper;
     mapper->SetInputData(surfels);
+    mapper->SetBackend(kind.SplatBackend);
+    mapper->SetFilterMode(kind.FilterMode);
     return mapper;
   }
   return splatexample::PointGaussianDisks(surfels);
@@ -341,7 +388,8 @@ CaseResult MeasureCase(vtkRenderWindow* window, const MapperKind& kind,
     {
       splatexample::WritePNG(window,
         options.ImageDir + "/" + scene + "-" + std::to_string(result.Points) + "-" +
-          std::to_string(size) + "-" + kind.Name + "-" + kind.Setting + ".png");
+          std::to_string(size) + "-" + kind.Name + "-" +
+          vtksys::SystemTools::LowerCase(kind.Backend) + "-" + kind.Setting + ".png");
     }
     // Releases the case's graphics resources; the actor, mapper and data go with this scope.
     renderer->RemoveAllViewProps();
@@ -364,16 +412,14 @@ int MeasureScene(vtkRenderWindow* window, const std::string& scene, bool closed,
     window->SetSize(static_cast<int>(size), static_cast<int>(size));
     window->Render();
     window->WaitForCompletion();
-    for (const MapperKind& kind : Kinds)
+    for (const MapperKind& kind : Kinds(options))
     {
-      if (std::find(options.Mappers.begin(), options.Mappers.end(), kind.Name) ==
-          options.Mappers.end() ||
-        (kind.ClosedOnly && !closed))
+      if (kind.ClosedOnly && !closed)
       {
         continue;
       }
       std::cerr << "splat_bench: " << scene << ", " << size << "x" << size << ", " << kind.Class
-                << " (" << kind.Setting << ") ...\n";
+                << " (" << kind.Backend << ", " << kind.Setting << ") ...\n";
       const CaseResult r = MeasureCase(window, kind, makeData, options, scene, size);
 
       std::ostringstream row;
@@ -401,9 +447,9 @@ int MeasureScene(vtkRenderWindow* window, const std::string& scene, bool closed,
 
       std::ostringstream summary;
       summary << "splat_bench: " << scene << " " << r.Points << " points " << size << "x" << size
-              << " " << kind.Class << " " << kind.Setting << ": " << std::fixed
-              << std::setprecision(2) << r.Milliseconds << " ms/frame (median of " << r.Frames
-              << ")";
+              << " " << kind.Class << " " << kind.Backend << " " << kind.Setting << ": "
+              << std::fixed << std::setprecision(2) << r.Milliseconds << " ms/frame (median of "
+              << r.Frames << ")";
       if (r.HasCounts)
       {
         summary << "; rendered " << r.Rendered << ", frustum culled " << r.FrustumCulled

@@ -55,6 +55,23 @@ inline vtkSmartPointer<vtkRenderWindow> MakeOffscreenWindow()
   return window;
 }
 
+/// The window's OpenGL renderer string (e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"), "unknown"
+/// when the window does not say; the window must have been rendered.
+inline std::string OpenGLRenderer(vtkRenderWindow* window)
+{
+  const std::string report = window->ReportCapabilities();
+  const std::string key = "OpenGL renderer string:";
+  const auto at = report.find(key);
+  if (at == std::string::npos)
+  {
+    return "unknown";
+  }
+  const auto end = report.find('\n', at);
+  std::string name = report.substr(at + key.size(), end - at - key.size());
+  name.erase(0, name.find_first_not_of(" \t"));
+  return name;
+}
+
 /// Renders the window and writes its RGB image as a PNG.
 inline void WritePNG(vtkRenderWindow* window, const std::string& path)
 {

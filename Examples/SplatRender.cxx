@@ -4,6 +4,7 @@
 // Run `splat_render --help` for the options.
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
+#include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
 #include "vtkSurfelSphereSource.h"
@@ -70,7 +71,12 @@ Options (a value follows as --name VALUE or --name=VALUE):
   --zoom F                zoom factor, > 1 moves closer (default 1)
   --view-up x,y,z         camera view up vector (default 0,1,0)
   --view-direction x,y,z  direction the camera looks along (default 0,0,-1)
-  --backend auto|cpu      rendering backend (default auto; CPU is the only one so far)
+  --backend auto|cpu|opengl
+                          rendering backend (default auto: OpenGL on a hardware GPU, the CPU
+                          under a software OpenGL renderer such as Mesa's llvmpipe)
+  --filter ewa|circular|unfiltered|approximate
+                          screen-space filter (default ewa, exact EWA; approximate is the
+                          OpenGL backend's cheaper filter, the CPU draws EWA for it)
   --radius-scale F        vtkSurfelGenerator RadiusScale: splat radius / point spacing (default 1)
   --cutoff F              vtkSurfaceSplatMapper Cutoff on the kernel exponent (default 1)
   --color r,g,b           splat color in [0,1], replaces the data's own colors
@@ -96,6 +102,8 @@ struct Options
   std::optional<Triple> ViewDirection;
   double RadiusScale = 1.0;
   double Cutoff = 1.0;
+  int Backend = vtkSplatBackend::AUTO;
+  int FilterMode = vtkSurfaceSplatMapper::EWA;
   std::optional<Triple> Color;
   Triple Background = { 0.1, 0.1, 0.15 };
   int Frames = 5;
@@ -172,6 +180,23 @@ Triple ParseDirection(const std::string& option, const std::string& text)
   return direction;
 }
 
+// The value of one of `choices`' names, case-insensitive.
+int ParseChoice(
+  const std::string& option, const std::string& text, const std::map<std::string, int>& choices)
+{
+  const auto choice = choices.find(vtksys::SystemTools::LowerCase(text));
+  if (choice == choices.end())
+  {
+    std::string names;
+    for (const auto& c : choices)
+    {
+      names += (names.empty() ? "" : ", ") + c.first;
+    }
+    throw UsageError(option + ": unknown '" + text + "' (choose from " + names + ")");
+  }
+  return choice->second;
+}
+
 bool HasExtension(const std::string& path, const std::string& extension)
 {
   return vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path)) ==
@@ -224,13 +249,17 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--backend",
       [&](const std::string& name, const std::string& value)
       {
-        // The OpenGL backend is not written yet: "auto" resolves to the CPU rasterizer.
-        const std::string backend = vtksys::SystemTools::LowerCase(value);
-        if (backend != "auto" && backend != "cpu")
-        {
-          throw UsageError(name + ": unknown backend '" + value +
-            "'; available: auto, cpu (the OpenGL backend is not implemented yet)");
-        }
+        options.Backend = ParseChoice(name, value,
+          { { "auto", vtkSplatBackend::AUTO }, { "cpu", vtkSplatBackend::CPU },
+            { "opengl", vtkSplatBackend::OPENGL } });
+      } },
+    { "--filter",
+      [&](const std::string& name, const std::string& value)
+      {
+        options.FilterMode = ParseChoice(name, value,
+          { { "ewa", vtkSurfaceSplatMapper::EWA }, { "circular", vtkSurfaceSplatMapper::CIRCULAR },
+            { "unfiltered", vtkSurfaceSplatMapper::UNFILTERED },
+            { "approximate", vtkSurfaceSplatMapper::APPROXIMATE } });
       } },
     { "--radius-scale",
       [&](const std::string& name, const std::string& value)
@@ -495,6 +524,8 @@ vtkSmartPointer<vtkSurfaceSplatMapper> SplatMapper(vtkPolyData* data, const Opti
   auto mapper = vtkSmartPointer<vtkSurfaceSplatMapper>::New();
   mapper->SetInputConnection(surfels->GetOutputPort());
   mapper->SetCutoff(options.Cutoff);
+  mapper->SetBackend(options.Backend);
+  mapper->SetFilterMode(options.FilterMode);
   return mapper;
 }
 
@@ -574,14 +605,25 @@ void RenderScene(vtkRenderWindow* window, vtkSurfaceSplatMapper* mapper, const O
   }
   const double ms = splatexample::Median(frameMs);
   const vtkIdType splats = mapper->GetNumberOfSplats();
-
-  std::cout << std::fixed << std::setprecision(2) << "  backend:       CPU\n"
-            << "  splats:        " << splats << " (" << mapper->GetNumberOfRenderedSplats()
-            << " drawn, " << mapper->GetNumberOfCulledSplats() << " culled, "
-            << mapper->GetNumberOfSkippedPoints() << " invalid points skipped)\n"
-            << "  ms per frame:  " << ms << " (median of " << options.Frames
-            << " frames, render window); mapper " << splatexample::Median(mapperMs)
-            << " (GetLastRenderTimeInMilliseconds)\n"
+  // The backend that drew (AUTO resolves per window), and the OpenGL renderer behind it.
+  std::cout << "  backend:       " << vtkSplatBackend::GetBackendAsString(mapper->GetLastBackend())
+            << " (OpenGL renderer: " << splatexample::OpenGLRenderer(window) << ")\n"
+            << "  splats:        " << splats << " (";
+  // The OpenGL backend culls in its vertex shader without counting (the counts are -1).
+  if (mapper->GetNumberOfRenderedSplats() >= 0)
+  {
+    std::cout << mapper->GetNumberOfRenderedSplats() << " drawn, "
+              << mapper->GetNumberOfCulledSplats() << " culled, ";
+  }
+  std::cout << mapper->GetNumberOfSkippedPoints() << " invalid points skipped)\n"
+            << std::fixed << std::setprecision(2) << "  ms per frame:  " << ms << " (median of "
+            << options.Frames << " frames, render window); mapper "
+            << splatexample::Median(mapperMs)
+            << " (GetLastRenderTimeInMilliseconds"
+            // OpenGL runs asynchronously: the mapper's own time need not include the GPU's work.
+            << (mapper->GetLastBackend() == vtkSplatBackend::OPENGL ? ", without queued GPU work"
+                                                                   : "")
+            << ")\n"
             << "  splats per s:  " << std::setprecision(0) << splats / (ms * 1e-3) << "\n";
   splatexample::WritePNG(window, png);
   std::cout << "  image:         " << png << " (" << options.Width << "x" << options.Height << ")"

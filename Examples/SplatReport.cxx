@@ -20,6 +20,7 @@
 #include "SplatCheckerboardScene.h"
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
+#include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
 
@@ -92,9 +93,10 @@ const char* const Usage = R"(Usage: splat_report [OPTIONS]
 
 The error-against-run-time report: renders each scene with every quality setting of
 vtkSurfaceSplatMapper (the default, then one setting changed at a time: cutoff, filter mode,
-number of A-buffer layers, edge antialiasing, thread count) and with vtkPointGaussianMapper
-(opaque disks of the surfels' radius; Gaussians of the surfels' variance), offscreen, and
-measures each image against a reference:
+number of A-buffer layers, edge antialiasing, thread count), on the CPU backend and again on the
+OpenGL backend (the same settings, plus the approximate filter mode; no thread counts), and with
+vtkPointGaussianMapper (opaque disks of the surfels' radius; Gaussians of the surfels'
+variance), offscreen, and measures each image against a reference:
   checkerboard  a checkerboard plane at a grazing angle (paper 000, figure 8), about 1 M surfels
                 on a regular grid; analytic reference (exact ray/plane intersections, 16x16
                 sub-samples per pixel, unit-variance Gaussian pixel filter)
@@ -112,6 +114,8 @@ absolute difference) for every case. Prints the tables.
 Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separated):
   --output-dir DIR   output folder (default $SPLAT_OUTPUT_DIR/report, else output/report)
   --scenes LIST      checkerboard, bunny (default both; bunny is skipped when absent)
+  --backends LIST    vtkSurfaceSplatMapper's backends: cpu, opengl (default both; under a
+                     software OpenGL renderer such as llvmpipe the OpenGL rows are slow)
   --size WxH         image size in pixels (default 512x384)
   --rounds N         rounds over all cases (default 4)
   --frames N         timed frames per case and round (default 3)
@@ -129,6 +133,7 @@ struct Options
 {
   std::string OutputDir;
   std::vector<std::string> Scenes = { "checkerboard", "bunny" };
+  std::vector<std::string> Backends = { "cpu", "opengl" };
   int Width = 512;
   int Height = 384;
   int Rounds = 4;
@@ -152,6 +157,10 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--scenes",
       [&](const std::string& name, const std::string& value) {
         options.Scenes = splatexample::SplitList(name, value, { "checkerboard", "bunny" });
+      } },
+    { "--backends",
+      [&](const std::string& name, const std::string& value) {
+        options.Backends = splatexample::SplitList(name, value, { "cpu", "opengl" });
       } },
     { "--size",
       [&](const std::string& name, const std::string& value) {
@@ -234,6 +243,7 @@ struct SplatSetting
   std::string Family; // the plot's series
   std::string Name;   // the table's setting column
   std::function<void(vtkSurfaceSplatMapper*)> Apply;
+  bool OpenGLOnly = false; // the CPU backend would draw its default instead
 };
 
 std::vector<SplatSetting> SplatSettings()
@@ -246,6 +256,9 @@ std::vector<SplatSetting> SplatSettings()
       [](vtkSurfaceSplatMapper* m) { m->SetFilterMode(vtkSurfaceSplatMapper::CIRCULAR); } },
     { "filter mode", "filter=unfiltered",
       [](vtkSurfaceSplatMapper* m) { m->SetFilterMode(vtkSurfaceSplatMapper::UNFILTERED); } },
+    { "approximate", "filter=approximate",
+      [](vtkSurfaceSplatMapper* m) { m->SetFilterMode(vtkSurfaceSplatMapper::APPROXIMATE); },
+      true },
     { "layers", "layers=1", [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayers(1); } },
     { "layers", "layers=5", [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayers(5); } },
   };
@@ -262,22 +275,38 @@ struct Case
 {
   std::string Mapper;  // the VTK class
   std::string Backend; // what draws it
-  std::string Family;  // the plot's series
+  std::string Family;  // the plot's series (per backend, see SeriesOf)
   std::string Setting; // the table's setting column
-  int Threads = 0;     // vtkSMPTools threads; 0 for the OpenGL peer (the driver's own)
+  int Threads = 0;     // vtkSMPTools threads; 0 for OpenGL (the driver's own)
   bool IsDefault = false;
   // Makes the mapper for the surfels.
   std::function<vtkSmartPointer<vtkMapper>(vtkPolyData*)> Make;
+  bool Defaults = false; // the mapper's default settings (a thread count or a backend aside)
 };
 
-std::vector<Case> Cases(const std::vector<int>& threadCounts)
+// Our mapper on a backend other than the CPU (whose rows came first and keep their names).
+bool OnOtherBackend(const Case& c)
+{
+  return c.Mapper == "vtkSurfaceSplatMapper" && c.Backend != "CPU";
+}
+
+// The plot's series of a case: its family of settings, named with the backend when not the CPU.
+std::string SeriesOf(const Case& c)
+{
+  const std::string family = c.Family == "default" ? "default (EWA)" : c.Family;
+  return OnOtherBackend(c) ? c.Backend + " " + family : family;
+}
+
+std::vector<Case> Cases(
+  const std::vector<int>& threadCounts, const std::vector<std::string>& backends)
 {
   const int allThreads = threadCounts.back();
-  const auto splat = [](const std::function<void(vtkSurfaceSplatMapper*)>& apply) {
-    return [apply](vtkPolyData* surfels) -> vtkSmartPointer<vtkMapper> {
+  const auto splat = [](int backend, const std::function<void(vtkSurfaceSplatMapper*)>& apply) {
+    return [backend, apply](vtkPolyData* surfels) -> vtkSmartPointer<vtkMapper> {
       vtkNew<vtkSurfaceSplatMapper> mapper;
       mapper->SetInputData(surfels);
       mapper->SetRadiusArrayName("Radius");
+      mapper->SetBackend(backend);
       if (apply)
       {
         apply(mapper);
@@ -287,15 +316,40 @@ std::vector<Case> Cases(const std::vector<int>& threadCounts)
   };
   std::vector<Case> cases;
   const std::string defaults = "default (" + DefaultSettingDescription() + ")";
-  for (auto it = threadCounts.rbegin(); it != threadCounts.rend(); ++it)
+  // The same settings on both backends. The CPU's default row is the report's default and its
+  // thread counts are settings; OpenGL's rows run on the driver's threads (0).
+  for (int backend : { vtkSplatBackend::CPU, vtkSplatBackend::OPENGL })
   {
-    cases.push_back({ "vtkSurfaceSplatMapper", "CPU", *it == allThreads ? "default" : "threads",
-      defaults, *it, *it == allThreads, splat(nullptr) });
-  }
-  for (const SplatSetting& s : SplatSettings())
-  {
-    cases.push_back(
-      { "vtkSurfaceSplatMapper", "CPU", s.Family, s.Name, allThreads, false, splat(s.Apply) });
+    const std::string name = vtkSplatBackend::GetBackendAsString(backend);
+    const bool cpu = backend == vtkSplatBackend::CPU;
+    if (std::find(backends.begin(), backends.end(), vtksys::SystemTools::LowerCase(name)) ==
+      backends.end())
+    {
+      continue;
+    }
+    if (cpu)
+    {
+      for (auto it = threadCounts.rbegin(); it != threadCounts.rend(); ++it)
+      {
+        cases.push_back({ "vtkSurfaceSplatMapper", name,
+          *it == allThreads ? "default" : "threads", defaults, *it, *it == allThreads,
+          splat(backend, nullptr), true });
+      }
+    }
+    else
+    {
+      cases.push_back({ "vtkSurfaceSplatMapper", name, "default", "default", 0, false,
+        splat(backend, nullptr), true });
+    }
+    for (const SplatSetting& s : SplatSettings())
+    {
+      if (cpu && s.OpenGLOnly)
+      {
+        continue;
+      }
+      cases.push_back({ "vtkSurfaceSplatMapper", name, s.Family, s.Name, cpu ? allThreads : 0,
+        false, splat(backend, s.Apply) });
+    }
   }
   // The peer, on the same points: opaque disks of the surfels' radius (the like-for-like surface
   // rendering), and its default Gaussian blobs with the surfels' variance R^2/2 (sigma R/sqrt 2),
@@ -524,7 +578,7 @@ std::vector<Row> MeasureScene(vtkRenderWindow* window, vtkRenderer* renderer,
           std::to_string(threads) + " threads (" + vtkSMPTools::GetBackend() + " backend)");
       }
       std::cerr << "splat_report: " << scene << " (round " << round + 1 << "/" << options.Rounds
-                << "): " << c.Mapper << " " << c.Setting;
+                << "): " << c.Mapper << " (" << c.Backend << ") " << c.Setting;
       if (c.Threads > 0)
       {
         std::cerr << ", " << threads << (threads == 1 ? " thread" : " threads");
@@ -548,9 +602,12 @@ std::vector<Row> MeasureScene(vtkRenderWindow* window, vtkRenderer* renderer,
       {
         throw std::runtime_error("comparing the images failed: " + image.geterror());
       }
-      const std::string name = scene + "-" +
-        (c.Mapper == "vtkSurfaceSplatMapper" ? "splat" : "pointgaussian") + "-" +
-        Slug(c.IsDefault || c.Family == "threads" ? "default" : c.Setting) +
+      // The CPU backend's names as before the OpenGL backend: "splat-...", "splat-opengl-...".
+      const std::string mapperName = c.Mapper != "vtkSurfaceSplatMapper" ? "pointgaussian"
+        : OnOtherBackend(c) ? "splat-" + vtksys::SystemTools::LowerCase(c.Backend)
+                            : "splat";
+      const std::string name = scene + "-" + mapperName + "-" +
+        Slug(c.Defaults ? "default" : c.Setting) +
         (c.Threads > 0 ? "-t" + std::to_string(threads) : "");
       WriteImage(image, options.OutputDir + "/" + name + ".png");
       WriteImage(OIIO::ImageBufAlgo::mul(OIIO::ImageBufAlgo::absdiff(image, reference), 4.0f),
@@ -600,7 +657,7 @@ void WriteCsv(const std::vector<Row>& rows, const std::string& path)
   for (const Row& r : rows)
   {
     csv << r.Scene << "," << r.What->Mapper << "," << r.What->Backend << ",\""
-        << (r.What->IsDefault || r.What->Family == "threads" ? "default" : r.What->Setting)
+        << (r.What->Defaults ? "default" : r.What->Setting)
         << "\"," << (r.Threads > 0 ? std::to_string(r.Threads) : "") << ","
         << Fixed(r.Milliseconds, 2) << "," << Fixed(r.Rmse, 5) << "," << Fixed(r.Psnr, 2) << ","
         << Fixed(r.RmseAlt, 5) << "," << Fixed(r.PsnrAlt, 2) << ","
@@ -645,8 +702,11 @@ std::string MarkdownTable(const std::vector<Row>& rows, const std::string& alter
   for (std::size_t i = 0; i < front.size(); ++i)
   {
     const Row& r = *front[i];
+    // Our mapper's CPU rows unnamed, the others by backend ("OpenGL default") or peer.
     md << (i ? "; " : " ")
-       << (r.What->Mapper == "vtkSurfaceSplatMapper" ? "" : r.What->Mapper + " ")
+       << (r.What->Mapper != "vtkSurfaceSplatMapper" ? r.What->Mapper + " "
+              : OnOtherBackend(*r.What)              ? r.What->Backend + " "
+                                                     : "")
        << (r.What->IsDefault ? std::string("the default") : r.What->Setting)
        << (r.Threads > 0
               ? ", " + std::to_string(r.Threads) + (r.Threads == 1 ? " thread" : " threads")
@@ -665,7 +725,8 @@ std::string MarkdownTable(const std::vector<Row>& rows, const std::string& alter
 }
 
 // The plot: RMSE against ms per frame (log scale), one chart per scene, one point series per
-// family of settings, and the Pareto front as a line.
+// family of settings and backend, and the Pareto front as a line. A family's series share a
+// marker and a hue, dark on the CPU and light on OpenGL.
 void WritePlot(const std::vector<std::string>& scenes, const std::vector<Row>& rows,
   const std::string& path)
 {
@@ -673,16 +734,20 @@ void WritePlot(const std::vector<std::string>& scenes, const std::vector<Row>& r
   vtkRenderWindow* window = view->GetRenderWindow();
   window->SetOffScreenRendering(1);
   window->SetMultiSamples(0);
-  window->SetSize(640 * static_cast<int>(scenes.size()), 520);
+  window->SetSize(640 * static_cast<int>(scenes.size()), 620);
   view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
   vtkNew<vtkChartMatrix> matrix;
   matrix->SetSize(vtkVector2i(static_cast<int>(scenes.size()), 1));
   matrix->SetGutter(vtkVector2f(70.0f, 60.0f));
   view->GetScene()->AddItem(matrix);
 
-  const unsigned char palette[][3] = { { 0, 0, 0 }, { 31, 119, 180 }, { 255, 127, 14 },
-    { 44, 160, 44 }, { 214, 39, 40 }, { 148, 103, 189 }, { 140, 86, 75 }, { 227, 119, 194 },
-    { 127, 127, 127 }, { 188, 189, 34 }, { 23, 190, 207 } };
+  // Tableau's paired colors, after black and gray for the default.
+  const unsigned char palette[][2][3] = { { { 0, 0, 0 }, { 150, 150, 150 } },
+    { { 31, 119, 180 }, { 174, 199, 232 } }, { { 255, 127, 14 }, { 255, 187, 120 } },
+    { { 44, 160, 44 }, { 152, 223, 138 } }, { { 214, 39, 40 }, { 255, 152, 150 } },
+    { { 148, 103, 189 }, { 197, 176, 213 } }, { { 140, 86, 75 }, { 196, 156, 148 } },
+    { { 227, 119, 194 }, { 247, 182, 210 } }, { { 188, 189, 34 }, { 219, 219, 141 } },
+    { { 23, 190, 207 }, { 158, 218, 229 } } };
   const int markers[] = { vtkPlotPoints::DIAMOND, vtkPlotPoints::CIRCLE, vtkPlotPoints::SQUARE,
     vtkPlotPoints::PLUS, vtkPlotPoints::CROSS };
   std::vector<vtkSmartPointer<vtkTable>> tables; // alive until rendered
@@ -699,7 +764,9 @@ void WritePlot(const std::vector<std::string>& scenes, const std::vector<Row>& r
     chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
     chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
 
-    std::vector<std::string> families;
+    std::vector<std::string> families; // of settings, in the order of the rows
+    std::vector<std::string> series;   // their series, per backend
+    std::vector<const Case*> firstCases;
     std::vector<const Row*> front;
     for (const Row& r : rows)
     {
@@ -707,11 +774,14 @@ void WritePlot(const std::vector<std::string>& scenes, const std::vector<Row>& r
       {
         continue;
       }
-      const std::string family =
-        r.What->Family == "default" ? "default (EWA)" : r.What->Family;
-      if (std::find(families.begin(), families.end(), family) == families.end())
+      if (std::find(families.begin(), families.end(), r.What->Family) == families.end())
       {
-        families.push_back(family);
+        families.push_back(r.What->Family);
+      }
+      if (std::find(series.begin(), series.end(), SeriesOf(*r.What)) == series.end())
+      {
+        series.push_back(SeriesOf(*r.What));
+        firstCases.push_back(r.What);
       }
       if (r.Pareto)
       {
@@ -736,7 +806,7 @@ void WritePlot(const std::vector<std::string>& scenes, const std::vector<Row>& r
     time->SetUnscaledRange(std::max(lowMs / 1.3, 1e-3), std::max(highMs * 1.3, 2e-3));
     vtkAxis* error = chart->GetAxis(vtkAxis::LEFT);
     error->SetBehavior(vtkAxis::FIXED);
-    error->SetRange(0.0, highRmse > 0.0 ? 1.7 * highRmse : 1.0);
+    error->SetRange(0.0, highRmse > 0.0 ? 2.0 * highRmse : 1.0);
     if (front.size() > 1)
     {
       vtkNew<vtkTable> table;
@@ -758,17 +828,15 @@ void WritePlot(const std::vector<std::string>& scenes, const std::vector<Row>& r
       line->SetLabel("Pareto front");
       tables.push_back(table.Get());
     }
-    for (std::size_t f = 0; f < families.size(); ++f)
+    for (std::size_t f = 0; f < series.size(); ++f)
     {
       vtkNew<vtkTable> table;
       vtkNew<vtkFloatArray> ms, rmse;
       ms->SetName("ms");
-      rmse->SetName(families[f].c_str());
+      rmse->SetName(series[f].c_str());
       for (const Row& r : rows)
       {
-        const std::string family =
-          r.What->Family == "default" ? "default (EWA)" : r.What->Family;
-        if (r.Scene == scenes[s] && family == families[f])
+        if (r.Scene == scenes[s] && SeriesOf(*r.What) == series[f])
         {
           ms->InsertNextValue(static_cast<float>(r.Milliseconds));
           rmse->InsertNextValue(static_cast<float>(r.Rmse));
@@ -778,31 +846,19 @@ void WritePlot(const std::vector<std::string>& scenes, const std::vector<Row>& r
       table->AddColumn(rmse);
       auto* points = vtkPlotPoints::SafeDownCast(chart->AddPlot(vtkChart::POINTS));
       points->SetInputData(table, 0, 1);
-      const unsigned char* color = palette[f % (sizeof(palette) / sizeof(palette[0]))];
+      const std::size_t family =
+        std::find(families.begin(), families.end(), firstCases[f]->Family) - families.begin();
+      const unsigned char* color = palette[family % (sizeof(palette) / sizeof(palette[0]))]
+                                          [OnOtherBackend(*firstCases[f]) ? 1 : 0];
       points->SetColor(color[0], color[1], color[2], 255);
-      points->SetMarkerStyle(markers[f % (sizeof(markers) / sizeof(markers[0]))]);
-      points->SetMarkerSize(f == 0 ? 14.0f : 10.0f);
-      points->SetLabel(families[f]);
+      points->SetMarkerStyle(markers[family % (sizeof(markers) / sizeof(markers[0]))]);
+      points->SetMarkerSize(family == 0 ? 14.0f : 10.0f);
+      points->SetLabel(series[f]);
       tables.push_back(table.Get());
     }
   }
   view->Render();
   splatexample::WritePNG(window, path);
-}
-
-std::string OpenGLRenderer(vtkRenderWindow* window)
-{
-  const std::string report = window->ReportCapabilities();
-  const std::string key = "OpenGL renderer string:";
-  const auto at = report.find(key);
-  if (at == std::string::npos)
-  {
-    return "unknown";
-  }
-  const auto end = report.find('\n', at);
-  std::string name = report.substr(at + key.size(), end - at - key.size());
-  name.erase(0, name.find_first_not_of(" \t"));
-  return name;
 }
 
 int Run(const Options& options)
@@ -824,7 +880,7 @@ int Run(const Options& options)
   {
     threadCounts.insert(threadCounts.begin(), 1);
   }
-  const std::vector<Case> cases = Cases(threadCounts);
+  const std::vector<Case> cases = Cases(threadCounts, options.Backends);
   std::vector<std::string> notes;
 
   // One window for every case (see splatexample::MakeOffscreenWindow).
@@ -832,7 +888,7 @@ int Run(const Options& options)
   vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
   window->SetSize(options.Width, options.Height);
   window->Render();
-  const std::string glRenderer = OpenGLRenderer(window);
+  const std::string glRenderer = splatexample::OpenGLRenderer(window);
 
   std::vector<Row> rows;
   std::vector<std::string> scenes;
@@ -848,7 +904,10 @@ int Run(const Options& options)
      << "is the RMSE against the same scene with the other pixel filter (box or Gaussian), "
      << "which ranks blur differently. The default setting is in bold; every other "
      << "row changes one setting from it. A row is on the Pareto front when no other row of "
-     << "the scene is both faster and more exact. Peer: `vtkPointGaussianMapper` on the same "
+     << "the scene is both faster and more exact. Backends: the CPU rows run on vtkSMPTools' "
+     << "threads; the OpenGL rows repeat the settings in shaders on the OpenGL renderer above "
+     << "(under a software renderer such as llvmpipe, its time is the CPU's, not a GPU's) and "
+     << "add the approximate filter mode (OpenGL only). Peer: `vtkPointGaussianMapper` on the same "
      << "points, emissive off: `disk` draws opaque disks of the surfels' radius, `gaussian` its "
      << "default alpha-blended Gaussians with the surfels' variance (sigma = radius/sqrt 2).\n\n";
 

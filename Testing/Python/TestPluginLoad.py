@@ -5,11 +5,11 @@
 Checks that
 - the plugin loads in the client (builtin) session;
 - mappers/SurfaceSplatMapper creates a vtkSurfaceSplatMapper whose settings (Cutoff, Radius,
-  DepthThreshold, RadiusArrayName, FilterMode, NumberOfLayers, EdgeAntialiasing,
+  DepthThreshold, RadiusArrayName, FilterMode, Backend, NumberOfLayers, EdgeAntialiasing,
   CoverageThreshold, OpacityArrayName, TangentAxis0ArrayName, TangentAxis1ArrayName) have their
   defaults and, set through the proxy, read back from the VTK object (through their information
-  properties and the object's getters), and whose render statistics are exposed; a missing
-  property fails;
+  properties and the object's getters), and whose render statistics (LastBackend included) are
+  exposed; a missing property fails;
 - filters/SurfelGenerator is in paraview.simple after LoadPlugin, runs on a Sphere source and
   produces points with normals and a radius array.
 Any failure exits non-zero (a missing plugin, class or proxy included).
@@ -46,13 +46,13 @@ def test_mapper(servermanager):
 
     # Every setting has its property and its information (read-back) property; every statistic
     # its information-only property. A missing one fails here, before the round trips.
-    settings = ["Radius", "RadiusArrayName", "Cutoff", "DepthThreshold", "FilterMode",
+    settings = ["Radius", "RadiusArrayName", "Cutoff", "DepthThreshold", "FilterMode", "Backend",
                 "NumberOfLayers", "EdgeAntialiasing", "CoverageThreshold", "OpacityArrayName",
                 "TangentAxis0ArrayName", "TangentAxis1ArrayName"]
     statistics = ["NumberOfSplats", "NumberOfRenderedSplats", "NumberOfCulledSplats",
                   "NumberOfFrustumCulledSplats", "NumberOfBackfaceCulledSplats",
                   "NumberOfNegligibleSplats", "NumberOfSkippedPoints",
-                  "LastRenderTimeInMilliseconds"]
+                  "LastRenderTimeInMilliseconds", "LastBackend"]
     for name in settings:
         prop = smproxy.GetProperty(name)
         check(prop is not None and not prop.GetInformationOnly(),
@@ -74,7 +74,7 @@ def test_mapper(servermanager):
     # call them itself), agrees with the mapper's documented defaults.
     smproxy.UpdateVTKObjects()
     defaults = {"Cutoff": 1.0, "Radius": 1.0, "DepthThreshold": 1.0, "FilterMode": 0,
-                "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.4,
+                "Backend": 0, "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.4,
                 "RadiusArrayName": "Radius", "OpacityArrayName": "Opacity",
                 "TangentAxis0ArrayName": "TangentAxis0",
                 "TangentAxis1ArrayName": "TangentAxis1"}
@@ -87,15 +87,21 @@ def test_mapper(servermanager):
         check(ok, "default %s is %r (got %r)" % (name, value, got))
     check(mapper.FilterMode == "EWA", "default FilterMode reads as 'EWA' (got %r)"
           % (mapper.FilterMode,))
+    check(mapper.Backend == "Auto", "default Backend reads as 'Auto' (got %r)"
+          % (mapper.Backend,))
 
-    # The FilterMode enumeration and the NumberOfLayers range.
-    enum = smproxy.GetProperty("FilterMode").FindDomain("vtkSMEnumerationDomain")
-    entries = {}
-    if check(enum is not None, "FilterMode has an enumeration domain"):
-        entries = {enum.GetEntryText(i): enum.GetEntryValue(i)
-                   for i in range(enum.GetNumberOfEntries())}
-    check(entries == {"EWA": 0, "Circular": 1, "Unfiltered": 2},
-          "FilterMode entries are EWA=0, Circular=1, Unfiltered=2 (got %s)" % (entries,))
+    # The enumerations (their values are the mapper's enums) and the NumberOfLayers range.
+    expected_entries = {
+        "FilterMode": {"EWA": 0, "Circular": 1, "Unfiltered": 2, "Approximate": 3},
+        "Backend": {"Auto": 0, "CPU": 1, "OpenGL": 2},
+    }
+    for name, expected in expected_entries.items():
+        enum = smproxy.GetProperty(name).FindDomain("vtkSMEnumerationDomain")
+        entries = {}
+        if check(enum is not None, "%s has an enumeration domain" % name):
+            entries = {enum.GetEntryText(i): enum.GetEntryValue(i)
+                       for i in range(enum.GetNumberOfEntries())}
+        check(entries == expected, "%s entries are %s (got %s)" % (name, expected, entries))
     layers = smproxy.GetProperty("NumberOfLayers").FindDomain("vtkSMIntRangeDomain")
     if check(layers is not None, "NumberOfLayers has a range domain"):
         check(layers.GetMinimum(0) == 1 and layers.GetMaximum(0) == 8,
@@ -112,8 +118,10 @@ def test_mapper(servermanager):
     for name, value in list(values.items()) + list(strings.items()):
         setattr(mapper, name, value)
     mapper.FilterMode = "Unfiltered"
+    mapper.Backend = "OpenGL"
     smproxy.UpdateVTKObjects()
     values["FilterMode"] = 2
+    values["Backend"] = 2
     for name, value in values.items():
         got = info_value(smproxy, name + "Info")
         check(close(got, value), "%s round-trips (set %g, got %s)" % (name, value, got))
@@ -124,16 +132,25 @@ def test_mapper(servermanager):
     # Back again, through the other values: a setting that only ever holds one value proves
     # nothing.
     mapper.FilterMode = "Circular"
+    mapper.Backend = "CPU"
     mapper.EdgeAntialiasing = 1
     mapper.NumberOfLayers = 8
     smproxy.UpdateVTKObjects()
-    for name, value in {"FilterMode": 1, "EdgeAntialiasing": 1, "NumberOfLayers": 8}.items():
+    for name, value in {"FilterMode": 1, "Backend": 1, "EdgeAntialiasing": 1,
+                        "NumberOfLayers": 8}.items():
         got = info_value(smproxy, name + "Info")
         check(close(got, value), "%s round-trips (set %g, got %s)" % (name, value, got))
     check(mapper.FilterMode == "Circular", "FilterMode reads as 'Circular' (got %r)"
           % (mapper.FilterMode,))
+    # And the values only the new entries hold.
+    mapper.FilterMode = "Approximate"
+    mapper.Backend = "Auto"
+    smproxy.UpdateVTKObjects()
+    for name, value in {"FilterMode": 3, "Backend": 0}.items():
+        got = info_value(smproxy, name + "Info")
+        check(close(got, value), "%s round-trips (set %g, got %s)" % (name, value, got))
 
-    # Render statistics are exposed before any render.
+    # Render statistics are exposed before any render (LastBackend is then Auto, 0).
     for name in statistics:
         got = info_value(smproxy, name)
         check(got == 0, "%s is 0 before a render (got %s)" % (name, got))

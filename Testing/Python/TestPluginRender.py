@@ -4,8 +4,10 @@
 
 Loads the plugin, makes surfels of a sphere with the SurfelGenerator filter, and draws them with
 the vtkSurfaceSplatMapper made by the mappers/SurfaceSplatMapper proxy in a plain VTK render
-window. Checks that the mapper drew splats (its NumberOfSplats statistic, read through the
-proxy) and that the image is not empty. Writes the image to DIR/SplatPluginRender.png.
+window, once per Backend setting (Auto, CPU, OpenGL, set through the proxy). Checks that the
+mapper drew splats (its NumberOfSplats statistic, read through the proxy), that LastBackend is
+the backend asked for (CPU or OpenGL for Auto) and that the image is not empty. Writes the
+images to DIR/SplatPluginRender.png (Auto) and DIR/SplatPluginRender-<backend>.png.
 This is a smoke test of the plugin under ParaView's VTK, not a regression-image test.
 """
 
@@ -63,32 +65,42 @@ def main():
     window.SetSize(256, 256)
     window.AddRenderer(renderer)
     renderer.ResetCamera()
-    window.Render()
-
-    splats = info_value(smproxy, "NumberOfSplats")
-    skipped = info_value(smproxy, "NumberOfSkippedPoints")
-    check(splats == npts, "mapper took all %d surfels (NumberOfSplats %s)" % (npts, splats))
-    check(skipped == 0, "no point skipped (NumberOfSkippedPoints %s)" % (skipped,))
-
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    grab.Update()
-    image = grab.GetOutput()
-    colors = image.GetPointData().GetScalars()
-    total = colors.GetNumberOfTuples()
-    lit = sum(1 for i in range(total) if max(colors.GetTuple3(i)) > 8)
-    fraction = lit / float(total)
-    # A unit sphere filling a 30 degree view covers roughly a third of the image.
-    check(0.1 < fraction < 0.9, "the splats cover %.1f%% of the image" % (100.0 * fraction))
-
     os.makedirs(args.output, exist_ok=True)
-    path = os.path.join(args.output, "SplatPluginRender.png")
-    writer = vtkPNGWriter()
-    writer.SetFileName(path)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
-    print("image: %s" % path)
+
+    # The Backend property's values, and what LastBackend may then say (1 CPU, 2 OpenGL).
+    for backend, drawn_by, suffix in (("Auto", (1, 2), ""), ("CPU", (1,), "-CPU"),
+                                      ("OpenGL", (2,), "-OpenGL")):
+        smproxy.GetProperty("Backend").SetElement(0, {"Auto": 0, "CPU": 1, "OpenGL": 2}[backend])
+        smproxy.UpdateVTKObjects()
+        window.Render()
+
+        last = info_value(smproxy, "LastBackend")
+        check(last in drawn_by, "%s: LastBackend is one of %s (got %s)" % (backend, drawn_by, last))
+        splats = info_value(smproxy, "NumberOfSplats")
+        skipped = info_value(smproxy, "NumberOfSkippedPoints")
+        check(splats == npts,
+              "%s: mapper took all %d surfels (NumberOfSplats %s)" % (backend, npts, splats))
+        check(skipped == 0, "%s: no point skipped (NumberOfSkippedPoints %s)" % (backend, skipped))
+
+        grab = vtkWindowToImageFilter()
+        grab.SetInput(window)
+        grab.ReadFrontBufferOff()
+        grab.Update()
+        image = grab.GetOutput()
+        colors = image.GetPointData().GetScalars()
+        total = colors.GetNumberOfTuples()
+        lit = sum(1 for i in range(total) if max(colors.GetTuple3(i)) > 8)
+        fraction = lit / float(total)
+        # A unit sphere filling a 30 degree view covers roughly a third of the image.
+        check(0.1 < fraction < 0.9,
+              "%s: the splats cover %.1f%% of the image" % (backend, 100.0 * fraction))
+
+        path = os.path.join(args.output, "SplatPluginRender%s.png" % suffix)
+        writer = vtkPNGWriter()
+        writer.SetFileName(path)
+        writer.SetInputConnection(grab.GetOutputPort())
+        writer.Write()
+        print("image: %s" % path)
 
     return exit_status()
 
