@@ -27,7 +27,10 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace splat
 {
@@ -48,6 +51,44 @@ struct SurfelProjection
 };
 
 /**
+ * A point projected through a to-clip matrix and the viewport mapping, with what the
+ * derivatives of its pixel position need.
+ */
+struct PointProjection
+{
+  glm::dvec2 Center{ 0.0 }; ///< pixels
+  glm::dvec2 Ndc{ 0.0 };
+  double InverseW = 1.0;
+  glm::dvec2 HalfSize{ 0.0 };
+
+  /// d(pixel) along a direction whose clip-space image is d: d(c.xy / c.w) = (d.xy - ndc d.w)
+  /// / c.w, then the viewport scale.
+  glm::dvec2 PixelDerivative(const glm::dvec4& d) const
+  {
+    return (glm::dvec2(d) - this->Ndc * d.w) * this->InverseW * this->HalfSize;
+  }
+};
+
+/**
+ * Projects p through toClip and the viewport mapping. Returns false when p is not strictly in
+ * front of the eye (clip w <= 0), where the linearization does not exist.
+ */
+inline bool ProjectPoint(const glm::dmat4& toClip, const glm::dvec2& viewportSize,
+  const glm::dvec3& p, PointProjection& out)
+{
+  const glm::dvec4 c = toClip * glm::dvec4(p, 1.0);
+  if (!(c.w > 0.0))
+  {
+    return false;
+  }
+  out.InverseW = 1.0 / c.w;
+  out.Ndc = glm::dvec2(c.x, c.y) * out.InverseW;
+  out.HalfSize = 0.5 * viewportSize;
+  out.Center = (out.Ndc + 1.0) * out.HalfSize;
+  return true;
+}
+
+/**
  * Projects the surfel (p, a0, a1) through the model-to-clip matrix and the viewport mapping.
  * Returns false when the center is not strictly in front of the eye (clip w <= 0), where the
  * linearization does not exist.
@@ -55,21 +96,14 @@ struct SurfelProjection
 inline bool ProjectSurfel(const glm::dmat4& modelToClip, const glm::dvec2& viewportSize,
   const glm::dvec3& p, const glm::dvec3& a0, const glm::dvec3& a1, SurfelProjection& out)
 {
-  const glm::dvec4 c = modelToClip * glm::dvec4(p, 1.0);
-  if (!(c.w > 0.0))
+  PointProjection center;
+  if (!ProjectPoint(modelToClip, viewportSize, p, center))
   {
     return false;
   }
-  const double invW = 1.0 / c.w;
-  const glm::dvec2 ndc(c.x * invW, c.y * invW);
-  const glm::dvec2 halfSize = 0.5 * viewportSize;
-  out.Center = (ndc + 1.0) * halfSize;
-
-  // d(c.xy / c.w) along a direction d: (d.xy - ndc * d.w) / c.w, then the viewport scale.
-  const glm::dvec4 d0 = modelToClip * glm::dvec4(a0, 0.0);
-  const glm::dvec4 d1 = modelToClip * glm::dvec4(a1, 0.0);
-  out.Jacobian[0] = (glm::dvec2(d0) - ndc * d0.w) * invW * halfSize;
-  out.Jacobian[1] = (glm::dvec2(d1) - ndc * d1.w) * invW * halfSize;
+  out.Center = center.Center;
+  out.Jacobian[0] = center.PixelDerivative(modelToClip * glm::dvec4(a0, 0.0));
+  out.Jacobian[1] = center.PixelDerivative(modelToClip * glm::dvec4(a1, 0.0));
   return true;
 }
 
@@ -172,6 +206,27 @@ inline ResamplingKernel MakeResamplingKernel(
 }
 
 /**
+ * The pixels whose centers (i + 0.5, j + 0.5) lie in the box center +- halfExtent, clipped to
+ * a width x height viewport, as inclusive bounds (x0, x1, y0, y1). Returns false when there
+ * are none.
+ */
+inline bool CoveredPixels(const glm::dvec2& center, const glm::dvec2& halfExtent, int width,
+  int height, glm::ivec4& box)
+{
+  const glm::dvec2 lo = center - halfExtent - 0.5;
+  const glm::dvec2 hi = center + halfExtent - 0.5;
+  if (!(hi.x >= 0.0 && hi.y >= 0.0 && lo.x <= width - 1 && lo.y <= height - 1))
+  {
+    return false;
+  }
+  box = glm::ivec4(static_cast<int>(std::ceil(std::max(lo.x, 0.0))),
+    static_cast<int>(std::floor(std::min(hi.x, width - 1.0))),
+    static_cast<int>(std::ceil(std::max(lo.y, 0.0))),
+    static_cast<int>(std::floor(std::min(hi.y, height - 1.0))));
+  return box.x <= box.y && box.z <= box.w;
+}
+
+/**
  * Depth of the surfel's tangent plane along each pixel's view ray, as the rational function
  * depth(x, y) = (N . (x, y, 1)) / (D . (x, y, 1)) of pixel coordinates, where depth is the eye-space
  * distance in front of the camera (-z_eye): linear in eye space, not the 1/z of the depth buffer
@@ -232,6 +287,29 @@ inline PixelRays MakePixelRays(const glm::dmat4& eyeToClip, const glm::dvec2& vi
     rays.Direction = glm::dmat3(glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0, 0.0, -1.0));
   }
   return rays;
+}
+
+/**
+ * Window-space depths in [0, 1] (e.g. the opaque scene read back from the framebuffer) as
+ * linear eye depths, the distance in front of the camera; the far plane and beyond become
+ * infinity.
+ */
+inline std::vector<float> EyeDepthsOfWindowDepths(
+  const glm::dmat4& clipToEye, const std::vector<float>& windowDepths)
+{
+  std::vector<float> eyeDepths(windowDepths.size());
+  std::transform(windowDepths.begin(), windowDepths.end(), eyeDepths.begin(),
+    [&clipToEye](float window)
+    {
+      if (!(window < 1.0f))
+      {
+        return std::numeric_limits<float>::infinity();
+      }
+      const glm::dmat4& C = clipToEye;
+      const double zNdc = 2.0 * window - 1.0;
+      return static_cast<float>(-(C[2][2] * zNdc + C[3][2]) / (C[2][3] * zNdc + C[3][3]));
+    });
+  return eyeDepths;
 }
 
 /**

@@ -144,25 +144,20 @@ struct VolumeProjection
 inline bool ProjectVolumeKernel(const glm::dmat4& eyeToClip, const glm::dvec2& viewportSize,
   const glm::dvec3& e, VolumeProjection& out)
 {
-  const glm::dvec4 c = eyeToClip * glm::dvec4(e, 1.0);
-  if (!(c.w > 0.0))
+  PointProjection center;
+  if (!ProjectPoint(eyeToClip, viewportSize, e, center))
   {
     return false;
   }
-  const double invW = 1.0 / c.w;
-  const glm::dvec2 ndc(c.x * invW, c.y * invW);
-  const glm::dvec2 halfSize = 0.5 * viewportSize;
-  out.Center = (ndc + 1.0) * halfSize;
+  out.Center = center.Center;
   const bool perspective = eyeToClip[3][3] == 0.0;
   // The distance along the ray: |e| from the eye (perspective) or -z from the eye plane.
   const glm::dvec3 distanceGradient =
     perspective ? e / glm::length(e) : glm::dvec3(0.0, 0.0, -1.0);
   for (int axis = 0; axis < 3; ++axis)
   {
-    // d(c.xy / c.w) along the eye axis: (d.xy - ndc * d.w) / c.w, then the viewport scale.
-    const glm::dvec4 d = eyeToClip[axis];
-    const glm::dvec2 pixel = (glm::dvec2(d) - ndc * d.w) * invW * halfSize;
-    out.Jacobian[axis] = glm::dvec3(pixel, distanceGradient[axis]);
+    out.Jacobian[axis] =
+      glm::dvec3(center.PixelDerivative(eyeToClip[axis]), distanceGradient[axis]);
   }
   return true;
 }

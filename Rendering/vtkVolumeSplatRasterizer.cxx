@@ -391,20 +391,15 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
         }
         const splat::ResamplingKernel footprint =
           splat::MakeVolumeFootprint(projection, eyeCovariance, cutoff);
-        const glm::dvec2 lo = footprint.Center - footprint.HalfExtent - 0.5;
-        const glm::dvec2 hi = footprint.Center + footprint.HalfExtent - 0.5;
-        if (!(hi.x >= 0.0 && hi.y >= 0.0 && lo.x <= width - 1 && lo.y <= height - 1))
+        glm::ivec4 box;
+        if (!splat::CoveredPixels(footprint.Center, footprint.HalfExtent, width, height, box))
         {
           continue;
         }
-        s.X0 = static_cast<int>(std::ceil(std::max(lo.x, 0.0)));
-        s.X1 = static_cast<int>(std::floor(std::min(hi.x, width - 1.0)));
-        s.Y0 = static_cast<int>(std::ceil(std::max(lo.y, 0.0)));
-        s.Y1 = static_cast<int>(std::floor(std::min(hi.y, height - 1.0)));
-        if (s.X0 > s.X1 || s.Y0 > s.Y1)
-        {
-          continue; // the box holds no pixel center
-        }
+        s.X0 = box.x;
+        s.X1 = box.y;
+        s.Y0 = box.z;
+        s.Y1 = box.w;
         s.Skip = Kept;
         s.CenterX = static_cast<float>(footprint.Center.x);
         s.CenterY = static_cast<float>(footprint.Center.y);
@@ -497,22 +492,9 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
 
   // 4. Compositing, band by band: each list into its own buffer, front to back in each
   // direction the band's pixels need, then the buffers merged with the squared weights.
-  std::vector<float> sceneEyeDepths;
-  if (this->SceneDepths.size() == pixels)
-  {
-    sceneEyeDepths.resize(pixels);
-    const glm::dmat4 C = glm::inverse(camera.EyeToClip);
-    std::transform(this->SceneDepths.begin(), this->SceneDepths.end(), sceneEyeDepths.begin(),
-      [&C](float window)
-      {
-        if (!(window < 1.0f))
-        {
-          return std::numeric_limits<float>::infinity();
-        }
-        const double zNdc = 2.0 * window - 1.0;
-        return static_cast<float>(-(C[2][2] * zNdc + C[3][2]) / (C[2][3] * zNdc + C[3][3]));
-      });
-  }
+  const std::vector<float> sceneEyeDepths = this->SceneDepths.size() == pixels
+    ? splat::EyeDepthsOfWindowDepths(glm::inverse(camera.EyeToClip), this->SceneDepths)
+    : std::vector<float>();
   const float* sceneDepths = sceneEyeDepths.empty() ? nullptr : sceneEyeDepths.data();
   const float cutoffF = static_cast<float>(cutoff);
   vtkSMPTools::For(0, bands, 1,
