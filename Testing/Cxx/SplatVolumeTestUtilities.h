@@ -6,6 +6,7 @@
 
 #include "SplatTestUtilities.h"
 
+#include "vtkAbstractVolumeMapper.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkPiecewiseFunction.h"
@@ -17,6 +18,23 @@
 
 namespace splattest
 {
+/**
+ * A vtkVolume drawing `mapper` with `property` (the default property when null), added to
+ * `renderer`, which keeps it.
+ */
+inline vtkVolume* AddVolume(
+  vtkRenderer* renderer, vtkAbstractVolumeMapper* mapper, vtkVolumeProperty* property)
+{
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  if (property)
+  {
+    volume->SetProperty(property);
+  }
+  renderer->AddVolume(volume);
+  return volume;
+}
+
 /**
  * A cube of n^3 voxels of spacing h centered at the origin holding the extinction of a Gaussian
  * blob, tau(x) = peak exp(-|x|^2 / (2 sigma^2)), as float scalars.

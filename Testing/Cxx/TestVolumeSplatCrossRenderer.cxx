@@ -33,11 +33,8 @@ Rendered Render(vtkAbstractVolumeMapper* mapper, vtkImageData* image, vtkVolumeP
   Place place)
 {
   mapper->SetInputDataObject(image);
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
   vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
+  vtkVolume* volume = splattest::AddVolume(renderer, mapper, property);
   renderer->SetBackground(0.0, 0.0, 0.0);
   auto window = splattest::MakeRenderWindow(Size, Size);
   window->AddRenderer(renderer);

@@ -85,11 +85,8 @@ std::vector<double> Render(vtkPolyData* data, bool direct, vtkVolumeSplatMapper*
   mapper->SetInputData(data);
   const double rgb[3] = { 0.9, 0.6, 0.3 };
   auto property = splattest::ExtinctionProperty(8.0, 1.0, rgb);
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
   vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
+  splattest::AddVolume(renderer, mapper, property);
   auto window = splattest::MakeRenderWindow(200, 200);
   window->AddRenderer(renderer);
   vtkCamera* camera = renderer->GetActiveCamera();
@@ -164,10 +161,8 @@ int main(int, char*[])
   bad->GetPointData()->AddArray(color);
   vtkNew<vtkVolumeSplatMapper> mapper;
   mapper->SetInputData(bad);
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
   vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
+  splattest::AddVolume(renderer, mapper, nullptr);
   auto window = splattest::MakeRenderWindow(200, 200);
   window->AddRenderer(renderer);
   vtkCamera* camera = renderer->GetActiveCamera();

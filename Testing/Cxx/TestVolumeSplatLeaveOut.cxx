@@ -48,11 +48,8 @@ int main(int, char*[])
 
   vtkNew<vtkVolumeSplatMapper> mapper;
   mapper->SetInputData(image);
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
   vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
+  vtkVolume* volume = splattest::AddVolume(renderer, mapper, property);
   auto window = splattest::MakeRenderWindow(200, 200);
   window->AddRenderer(renderer);
   vtkCamera* camera = renderer->GetActiveCamera();

@@ -35,11 +35,8 @@ std::vector<double> Render(bool squares)
   const double sigma = 0.25, peak = 2.0, rgb[3] = { 1.0, 0.3, 0.1 };
   vtkNew<vtkVolumeSplatMapper> mapper;
   mapper->SetInputData(splattest::GaussianBlob(48, 1.0 / 24.0, sigma, peak));
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(splattest::ExtinctionProperty(peak, 1.0 / 24.0, rgb));
   vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
+  splattest::AddVolume(renderer, mapper, splattest::ExtinctionProperty(peak, 1.0 / 24.0, rgb));
   if (squares)
   {
     renderer->AddActor(Square(-1.0, 0.0, 0.9));

@@ -47,11 +47,8 @@ inline double SweepSeams(vtkVolumeSplatMapper* mapper, vtkRenderWindow* window, 
   property->SetColor(color);
   property->SetScalarOpacityUnitDistance(1.0 / n);
   mapper->SetInputData(image);
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
   vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
+  splattest::AddVolume(renderer, mapper, property);
   window->AddRenderer(renderer);
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetViewAngle(60.0);
