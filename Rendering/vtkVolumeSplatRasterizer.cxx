@@ -177,6 +177,16 @@ vtkIdType vtkVolumeSplatRasterizer::GetProjectedCount() const
 }
 
 //------------------------------------------------------------------------------
+const std::vector<vtkIdType>& vtkVolumeSplatRasterizer::GetList(int list)
+{
+  if (this->Lists[list].size() != this->Input.Count)
+  {
+    this->BuildList(list);
+  }
+  return this->Lists[list];
+}
+
+//------------------------------------------------------------------------------
 void vtkVolumeSplatRasterizer::BuildList(int list)
 {
   std::vector<vtkIdType>& order = this->Lists[list];
@@ -435,9 +445,9 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
     for (int list = 0; list < 3; ++list)
     {
       used[list] = listUsed(list);
-      if (used[list] && this->Lists[list].size() != input.Count)
+      if (used[list])
       {
-        this->BuildList(list);
+        this->GetList(list);
       }
     }
   }

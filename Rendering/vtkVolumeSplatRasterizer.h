@@ -170,6 +170,13 @@ public:
   vtkGetMacro(ListBuildCount, vtkIdType);
   ///@}
 
+  /**
+   * List `list` (0, 1, 2 for the X, Y and Z axes of ListFrame): the kernels' indices in
+   * ascending order along the axis, built if missing (the grid's sheets for image data, a sort by
+   * position for point sets). The OpenGL backend draws in this order too.
+   */
+  const std::vector<vtkIdType>& GetList(int list);
+
   // Per-frame data of the implementation; declared here so that its helper functions can name
   // them.
   struct ScreenKernel;
