@@ -3,6 +3,7 @@
 
 #include "SplatVolumeKernel.h"
 #include "vtkOpenGLImageDepthCompositor.h"
+#include "vtkOpenGLVolumeSplatRasterizer.h"
 #include "vtkSplatBackend.h"
 #include "vtkVolumeSplatRasterizer.h"
 
@@ -240,37 +241,43 @@ double vtkVolumeSplatMapper::GetCutoff()
 //------------------------------------------------------------------------------
 bool vtkVolumeSplatMapper::GetListTraversed(int axis)
 {
-  return this->Rasterizer->GetListTraversed(axis);
+  return this->LastBackend == vtkSplatBackend::OPENGL
+    ? this->OpenGLRasterizer->GetListTraversed(axis)
+    : this->Rasterizer->GetListTraversed(axis);
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkVolumeSplatMapper::GetNumberOfProjectedKernels(int axis)
 {
-  return this->Rasterizer->GetProjectedCount(axis);
+  return this->LastBackend == vtkSplatBackend::OPENGL ? -1
+                                                     : this->Rasterizer->GetProjectedCount(axis);
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkVolumeSplatMapper::GetNumberOfProjectedKernels()
 {
-  return this->Rasterizer->GetProjectedCount();
+  return this->LastBackend == vtkSplatBackend::OPENGL ? -1
+                                                     : this->Rasterizer->GetProjectedCount();
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkVolumeSplatMapper::GetNumberOfNearPlaneKernels()
 {
-  return this->Rasterizer->GetNearPlaneCount();
+  return this->LastBackend == vtkSplatBackend::OPENGL ? -1
+                                                     : this->Rasterizer->GetNearPlaneCount();
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkVolumeSplatMapper::GetNumberOfFrustumCulledKernels()
 {
-  return this->Rasterizer->GetFrustumCulledCount();
+  return this->LastBackend == vtkSplatBackend::OPENGL ? -1
+                                                     : this->Rasterizer->GetFrustumCulledCount();
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkVolumeSplatMapper::GetNumberOfSorts()
 {
-  return this->Rasterizer->GetSortCount();
+  return this->Rasterizer->GetSortCount() + this->OpenGLRasterizer->GetSortCount();
 }
 
 //------------------------------------------------------------------------------
@@ -558,9 +565,7 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
 //------------------------------------------------------------------------------
 int vtkVolumeSplatMapper::SelectBackend(vtkRenderer* ren)
 {
-  const int backend = vtkSplatBackend::Resolve(this->Backend, ren->GetRenderWindow());
-  // The OpenGL backend plugs in here; until it lands, OpenGL requests render on the CPU.
-  return backend == vtkSplatBackend::OPENGL ? vtkSplatBackend::CPU : backend;
+  return vtkSplatBackend::Resolve(this->Backend, ren->GetRenderWindow());
 }
 
 //------------------------------------------------------------------------------
@@ -595,13 +600,24 @@ void vtkVolumeSplatMapper::Render(vtkRenderer* ren, vtkVolume* volume)
   // The opaque geometry is drawn: its depth ends each pixel's integration.
   std::vector<float> sceneDepths;
   this->Compositor->ReadDepths(ren, sceneDepths);
-  this->Rasterizer->SetSceneDepths(std::move(sceneDepths));
-  this->Rasterizer->Render(view);
   // Depth 0 passes the compositor's depth test everywhere: occlusion is already applied, and
   // the volume writes no depth.
-  const std::vector<float> depths(static_cast<std::size_t>(width) * height, 0.0f);
-  this->Compositor->Draw(ren, width, height, this->Rasterizer->GetColors().data(), depths.data(),
-    vtkOpenGLImageDepthCompositor::Blending::Translucent);
+  if (this->LastBackend == vtkSplatBackend::OPENGL)
+  {
+    this->OpenGLRasterizer->SetKernels(this->Kernels->View, this->Kernels->BuildTime.GetMTime());
+    this->OpenGLRasterizer->Render(ren, view, this->Rasterizer, sceneDepths);
+    this->Compositor->DrawTextures(ren, this->OpenGLRasterizer->GetColorTexture(),
+      this->OpenGLRasterizer->GetDepthTexture(),
+      vtkOpenGLImageDepthCompositor::Blending::Translucent);
+  }
+  else
+  {
+    this->Rasterizer->SetSceneDepths(std::move(sceneDepths));
+    this->Rasterizer->Render(view);
+    const std::vector<float> depths(static_cast<std::size_t>(width) * height, 0.0f);
+    this->Compositor->Draw(ren, width, height, this->Rasterizer->GetColors().data(),
+      depths.data(), vtkOpenGLImageDepthCompositor::Blending::Translucent);
+  }
 
   this->LastRenderTimeInMilliseconds =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -675,6 +691,7 @@ double* vtkVolumeSplatMapper::GetBounds()
 void vtkVolumeSplatMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Compositor->ReleaseGraphicsResources(window);
+  this->OpenGLRasterizer->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -700,4 +717,6 @@ void vtkVolumeSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastRenderTimeInMilliseconds: " << this->LastRenderTimeInMilliseconds << "\n";
   os << indent << "Rasterizer:\n";
   this->Rasterizer->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "OpenGLRasterizer:\n";
+  this->OpenGLRasterizer->PrintSelf(os, indent.GetNextIndent());
 }

@@ -52,8 +52,14 @@
  * premultiplied image is blended over the framebuffer.
  *
  * Backends: the multithreaded CPU rasterizer (vtkVolumeSplatRasterizer, threads from
- * vtkSMPTools, the same image for any number of threads). The OpenGL backend is not there yet:
- * OPENGL and AUTO render on the CPU, and GetLastBackend() says what ran.
+ * vtkSMPTools, the same image for any number of threads) and OpenGL shaders
+ * (vtkOpenGLVolumeSplatRasterizer: each list the frame needs splatted into its own float
+ * buffer in the render window's context, then merged), with the same image semantics and the
+ * same lists, which the CPU rasterizer builds for both. SetBackend picks one; AUTO takes OpenGL
+ * on a hardware GPU and the CPU under a software OpenGL renderer (vtkSplatBackend), and
+ * GetLastBackend() says what ran. The OpenGL backend does not count the kernels it projects or
+ * leaves out (GetNumberOfProjectedKernels, GetNumberOfNearPlaneKernels and
+ * GetNumberOfFrustumCulledKernels are -1 after its renders); it reports the lists it traversed.
  *
  * @sa vtkVolumeSplatRasterizer vtkSurfaceSplatMapper vtkFixedPointVolumeRayCastMapper
  */
@@ -69,6 +75,7 @@
 
 class vtkImageData;
 class vtkOpenGLImageDepthCompositor;
+class vtkOpenGLVolumeSplatRasterizer;
 class vtkPointSet;
 class vtkVolumeProperty;
 class vtkVolumeSplatRasterizer;
@@ -159,7 +166,7 @@ public:
   /**
    * What the last render did (paper 003, table 1): whether list `axis` (0, 1, 2 for X, Y, Z;
    * 3 for the per-frame depth sort) was traversed and how many kernels it splatted, and all
-   * lists together.
+   * lists together (-1: not counted by the OpenGL backend).
    */
   bool GetListTraversed(int axis);
   vtkIdType GetNumberOfProjectedKernels(int axis);
@@ -170,7 +177,8 @@ public:
   /**
    * Kernels in the lists, and those left out: zero opacity under the transfer function or the
    * opacity array, invalid input (see the class comment), reaching the near plane in the last
-   * render, or outside the view frustum in the last render.
+   * render, or outside the view frustum in the last render (these two are -1 after an OpenGL
+   * render: the shaders do not count them).
    */
   vtkGetMacro(NumberOfKernels, vtkIdType);
   vtkGetMacro(NumberOfTransparentKernels, vtkIdType);
@@ -219,8 +227,8 @@ protected:
   bool BuildPointKernels(vtkPointSet* points, vtkVolumeProperty* property);
 
   /**
-   * The backend that renders this frame. Until the OpenGL backend lands, CPU always; the only
-   * place that decides.
+   * The backend that renders this frame: the requested one, AUTO resolved by
+   * vtkSplatBackend::Resolve. The only place that decides.
    */
   int SelectBackend(vtkRenderer* ren);
 
@@ -236,7 +244,8 @@ protected:
   vtkIdType NumberOfInvalidKernels = 0;
   double LastRenderTimeInMilliseconds = 0.0;
 
-  vtkNew<vtkVolumeSplatRasterizer> Rasterizer;
+  vtkNew<vtkVolumeSplatRasterizer> Rasterizer; // also the lists and settings of both backends
+  vtkNew<vtkOpenGLVolumeSplatRasterizer> OpenGLRasterizer;
   vtkNew<vtkOpenGLImageDepthCompositor> Compositor;
 
 private:

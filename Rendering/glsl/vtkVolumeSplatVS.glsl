@@ -1,0 +1,108 @@
+//VTK::System::Dec
+// SPDX-License-Identifier: BSD-3-Clause
+// Volume splats as instanced quads: instance i draws kernel order[i] (or order[count - 1 - i]
+// for the descending traversal of a list), four vertices (a triangle strip) covering the box of
+// its footprint's cutoff ellipse. The per-kernel setup mirrors vtkVolumeSplatRasterizer's step 2
+// and SplatVolumeKernel.h (CrossesNearPlane, ProjectVolumeKernel, MakeVolumeFootprint,
+// TruncationCompensation) and CoveredPixels (SplatSurfelKernel.h) line by line.
+
+// Per kernel, kernelStride texels: (position relative to the shift folded into modelToEye,
+// strength), (color, unused) and, without a shared covariance, (xx, xy, xz, yy), (yz, zz, -, -).
+uniform samplerBuffer kernels;
+uniform isamplerBuffer order;
+uniform int kernelStride;
+uniform int count;
+uniform int descending;
+
+uniform mat4 modelToEye;
+uniform mat4 eyeToClip;
+uniform vec2 viewportSize;
+uniform float nearDistance;
+uniform float farDistance;
+uniform float cutoff;
+uniform float compensation; // TruncationCompensation(cutoff)
+uniform int perspective;
+uniform int peakOpacity;
+uniform int sharedCovariance;
+uniform mat3 sharedEyeCovariance;
+
+flat out vec2 splatCenter;
+flat out vec3 splatConic; // 1/2 M^-1 as (xx, 2 xy, yy): beta = dx^2 xx + dx dy xy + dy^2 yy
+flat out float splatAmplitude; // optical depth (density model) or opacity (peak model)
+flat out float splatDepth;     // eye depth of the center
+flat out vec3 splatColor;
+
+const float InverseTwoPi = 0.15915494309189533577;
+
+void cull()
+{
+  // Outside the clip volume: the quad yields no fragment.
+  gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+}
+
+void main()
+{
+  int k = texelFetch(order, descending != 0 ? count - 1 - gl_InstanceID : gl_InstanceID).r;
+  vec4 positionStrength = texelFetch(kernels, kernelStride * k);
+  vec3 e = (modelToEye * vec4(positionStrength.xyz, 1.0)).xyz;
+  mat3 V = sharedEyeCovariance;
+  if (sharedCovariance == 0)
+  {
+    vec4 c0 = texelFetch(kernels, kernelStride * k + 2);
+    vec4 c1 = texelFetch(kernels, kernelStride * k + 3);
+    mat3 W = mat3(modelToEye);
+    V = W * mat3(c0.x, c0.y, c0.z, c0.y, c0.w, c1.x, c0.z, c1.x, c1.y) * transpose(W);
+  }
+
+  // CrossesNearPlane, then ProjectVolumeKernel (the center strictly in front of the eye), then
+  // the far plane.
+  float zExtent = sqrt(2.0 * cutoff * max(V[2][2], 0.0));
+  vec4 c = eyeToClip * vec4(e, 1.0);
+  if (!(-e.z - zExtent > nearDistance) || !(c.w > 0.0) || -e.z - zExtent > farDistance)
+  {
+    cull();
+    return;
+  }
+  vec2 ndc = c.xy / c.w;
+  vec2 halfSize = 0.5 * viewportSize;
+  vec2 center = (ndc + 1.0) * halfSize;
+  // Ray space: pixel x, pixel y, distance along the ray (from the eye, or the eye plane).
+  vec3 distanceGradient = perspective != 0 ? e / length(e) : vec3(0.0, 0.0, -1.0);
+  mat3 J;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    vec4 d = eyeToClip[axis];
+    J[axis] = vec3((d.xy - ndc * d.w) / c.w * halfSize, distanceGradient[axis]);
+  }
+
+  // MakeVolumeFootprint: M = (J V J^T)_2x2 + I.
+  mat3 rayCovariance = J * V * transpose(J);
+  float mxx = rayCovariance[0][0] + 1.0;
+  float mxy = rayCovariance[1][0];
+  float myy = rayCovariance[1][1] + 1.0;
+  float detM = mxx * myy - mxy * mxy;
+  vec2 halfExtent = sqrt(2.0 * cutoff * vec2(mxx, myy));
+  // CoveredPixels: some pixel center inside the viewport.
+  vec2 lo = center - halfExtent - 0.5;
+  vec2 hi = center + halfExtent - 0.5;
+  if (!(hi.x >= 0.0 && hi.y >= 0.0 && lo.x <= viewportSize.x - 1.0 &&
+        lo.y <= viewportSize.y - 1.0))
+  {
+    cull();
+    return;
+  }
+
+  float strength = positionStrength.w;
+  splatCenter = center;
+  splatConic = vec3(0.5 * myy, -mxy, 0.5 * mxx) / detM;
+  splatAmplitude = peakOpacity != 0
+    ? strength
+    : strength * abs(determinant(J)) * InverseTwoPi / sqrt(detM) * compensation;
+  splatDepth = -e.z;
+  splatColor = texelFetch(kernels, kernelStride * k + 1).rgb;
+
+  // The corner of this vertex, with half a pixel of margin around the box.
+  vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
+  vec2 pixel = center + corner * (halfExtent + 0.5);
+  gl_Position = vec4(pixel / viewportSize * 2.0 - 1.0, 0.0, 1.0);
+}
