@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkOpenGLImageDepthCompositor.h"
 
+#include "SplatOpenGLUtilities.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -52,11 +53,7 @@ void vtkOpenGLImageDepthCompositor::Draw(vtkRenderer* renderer, int width, int h
   }
   for (vtkTextureObject* texture : { this->ColorTexture.Get(), this->DepthTexture.Get() })
   {
-    texture->SetContext(window);
-    texture->SetMinificationFilter(vtkTextureObject::Nearest);
-    texture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    texture->SetWrapS(vtkTextureObject::ClampToEdge);
-    texture->SetWrapT(vtkTextureObject::ClampToEdge);
+    splat::SetNearest(texture, window);
   }
   this->ColorTexture->Create2DFromRaw(width, height, 4, VTK_UNSIGNED_CHAR,
     const_cast<void*>(static_cast<const void*>(rgba)));
@@ -74,15 +71,7 @@ void vtkOpenGLImageDepthCompositor::DrawTextures(
   {
     return;
   }
-  if (!this->Quad)
-  {
-    this->Quad.reset(new vtkOpenGLQuadHelper(window, nullptr, CompositeFragmentShader, ""));
-  }
-  else
-  {
-    window->GetShaderCache()->ReadyShaderProgram(this->Quad->Program);
-  }
-  if (!this->Quad->Program || !this->Quad->Program->GetCompiled())
+  if (!splat::ReadyQuad(this->Quad, window, CompositeFragmentShader))
   {
     vtkErrorMacro("The splat compositing shader did not compile.");
     return;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkOpenGLSurfaceSplatRasterizer.h"
 
+#include "SplatOpenGLUtilities.h"
 #include "vtkHardwareSelector.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
@@ -42,14 +43,7 @@ enum SplatPass
 };
 constexpr int MaximumLights = 8; // as in vtkSurfaceSplatResolveFS.glsl
 
-void SetNearest(vtkTextureObject* texture, vtkOpenGLRenderWindow* window)
-{
-  texture->SetContext(window);
-  texture->SetMinificationFilter(vtkTextureObject::Nearest);
-  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
-  texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  texture->SetWrapT(vtkTextureObject::ClampToEdge);
-}
+using splat::SetNearest;
 }
 
 struct vtkOpenGLSurfaceSplatRasterizer::Internals
@@ -219,15 +213,7 @@ void vtkOpenGLSurfaceSplatRasterizer::SetSurfels(
     return;
   }
   const std::size_t n = surfels.Count;
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const glm::dvec3 p(surfels.Positions[3 * i], surfels.Positions[3 * i + 1],
-      surfels.Positions[3 * i + 2]);
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  internal.Shift = n > 0 ? 0.5 * (lo + hi) : glm::dvec3(0.0);
+  internal.Shift = splat::BoundsCenter(surfels.Positions, n);
   std::vector<float> data(SplatStride * n);
   internal.Translucent = false;
   for (std::size_t i = 0; i < n; ++i)
@@ -394,16 +380,8 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::ResolveLayer(vtkOpenGLRenderWin
   const vtkSurfaceSplatRasterizer::Camera& camera, const std::vector<splat::Light>& lights,
   const splat::Material& material, vtkSurfaceSplatRasterizer* settings, int layer)
 {
-  if (!this->Resolve)
-  {
-    this->Resolve.reset(new vtkOpenGLQuadHelper(window, nullptr, vtkSurfaceSplatResolveFS, ""));
-  }
-  else
-  {
-    window->GetShaderCache()->ReadyShaderProgram(this->Resolve->Program);
-  }
-  vtkShaderProgram* program = this->Resolve->Program;
-  if (!program || !program->GetCompiled())
+  vtkShaderProgram* program = splat::ReadyQuad(this->Resolve, window, vtkSurfaceSplatResolveFS);
+  if (!program)
   {
     return;
   }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkOpenGLVolumeSplatRasterizer.h"
 
+#include "SplatOpenGLUtilities.h"
 #include "SplatVolumeKernel.h"
 
 #include "vtkObjectFactory.h"
@@ -38,14 +39,7 @@ namespace
 using Rasterizer = vtkVolumeSplatRasterizer;
 constexpr int DepthList = Rasterizer::DepthList;
 
-void SetNearest(vtkTextureObject* texture, vtkOpenGLRenderWindow* window)
-{
-  texture->SetContext(window);
-  texture->SetMinificationFilter(vtkTextureObject::Nearest);
-  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
-  texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  texture->SetWrapT(vtkTextureObject::ClampToEdge);
-}
+using splat::SetNearest;
 
 // An open (strict) or closed half-plane A x + B y + C > 0 (>= 0) of pixel positions.
 struct HalfPlane
@@ -166,9 +160,6 @@ struct vtkOpenGLVolumeSplatRasterizer::Internals
   void UploadOrder(vtkOpenGLRenderWindow* window, int list, const std::vector<vtkIdType>& order);
   /// Draws into `target` with the bound framebuffer, after clearing it.
   void Target(vtkOpenGLState* state, vtkTextureObject* target);
-  /// The quad helper of a full-screen pass, its program made current; null if it failed.
-  vtkShaderProgram* ReadyQuad(
-    std::unique_ptr<vtkOpenGLQuadHelper>& quad, vtkOpenGLRenderWindow* window, const char* fs);
 };
 
 //------------------------------------------------------------------------------
@@ -219,21 +210,6 @@ void vtkOpenGLVolumeSplatRasterizer::Internals::Target(
 }
 
 //------------------------------------------------------------------------------
-vtkShaderProgram* vtkOpenGLVolumeSplatRasterizer::Internals::ReadyQuad(
-  std::unique_ptr<vtkOpenGLQuadHelper>& quad, vtkOpenGLRenderWindow* window, const char* fs)
-{
-  if (!quad)
-  {
-    quad.reset(new vtkOpenGLQuadHelper(window, nullptr, fs, ""));
-  }
-  else
-  {
-    window->GetShaderCache()->ReadyShaderProgram(quad->Program);
-  }
-  return quad->Program && quad->Program->GetCompiled() ? quad->Program : nullptr;
-}
-
-//------------------------------------------------------------------------------
 vtkOpenGLVolumeSplatRasterizer::vtkOpenGLVolumeSplatRasterizer()
   : Internal(new Internals)
 {
@@ -253,15 +229,12 @@ void vtkOpenGLVolumeSplatRasterizer::SetKernels(
   }
   const std::size_t n = kernels.Count;
   internal.Positions.resize(n);
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   for (std::size_t i = 0; i < n; ++i)
   {
     const double* p = kernels.Positions + 3 * i;
     internal.Positions[i] = glm::dvec3(p[0], p[1], p[2]);
-    lo = glm::min(lo, internal.Positions[i]);
-    hi = glm::max(hi, internal.Positions[i]);
   }
-  internal.Shift = n > 0 ? 0.5 * (lo + hi) : glm::dvec3(0.0);
+  internal.Shift = splat::BoundsCenter(kernels.Positions, n);
   internal.KernelStride = kernels.Covariances ? 4 : 2;
   const std::size_t stride = 4 * internal.KernelStride;
   // At least one texel: an empty buffer cannot back a texture.
@@ -381,7 +354,7 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
   state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
 
   // 2. Per pixel: the list weights and the opaque scene's eye depth.
-  vtkShaderProgram* weights = internal.ReadyQuad(internal.Weights, window, vtkVolumeSplatWeightsFS);
+  vtkShaderProgram* weights = splat::ReadyQuad(internal.Weights, window, vtkVolumeSplatWeightsFS);
   if (!weights)
   {
     vtkErrorMacro("The volume splatting weights shader did not compile.");
@@ -484,7 +457,7 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
 
   // 4. The merge, with the squared weights, into the result.
   state->vtkglDisable(GL_BLEND);
-  vtkShaderProgram* merge = internal.ReadyQuad(internal.Merge, window, vtkVolumeSplatMergeFS);
+  vtkShaderProgram* merge = splat::ReadyQuad(internal.Merge, window, vtkVolumeSplatMergeFS);
   if (!merge)
   {
     vtkErrorMacro("The volume splatting merge shader did not compile.");

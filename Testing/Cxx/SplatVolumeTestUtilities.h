@@ -7,9 +7,13 @@
 #include "SplatTestUtilities.h"
 
 #include "vtkAbstractVolumeMapper.h"
+#include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlaneSource.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -33,6 +37,25 @@ inline vtkVolume* AddVolume(
   }
   renderer->AddVolume(volume);
   return volume;
+}
+
+/**
+ * An opaque, unlit green square over [x0, x1] x [-1, 1] in the plane at height z, to hide or
+ * show the volume in front of or behind it.
+ */
+inline vtkSmartPointer<vtkActor> OpaqueSquare(double x0, double x1, double z)
+{
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(x0, -1.0, z);
+  plane->SetPoint1(x1, -1.0, z);
+  plane->SetPoint2(x0, 1.0, z);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.0, 1.0, 0.0);
+  actor->GetProperty()->LightingOff();
+  return actor;
 }
 
 /**

@@ -16,10 +16,6 @@
 #include "vtkSplatBackend.h"
 #include "vtkVolumeSplatMapper.h"
 
-#include "vtkActor.h"
-#include "vtkPlaneSource.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
 
 #include <chrono>
 #include <cstdint>
@@ -181,21 +177,6 @@ vtkSmartPointer<vtkVolumeProperty> KernelProperty()
   color->AddRGBPoint(8.0, 0.1, 0.3, 1.0);
   return property;
 }
-
-vtkSmartPointer<vtkActor> Square(double x0, double x1, double z)
-{
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(x0, -1.0, z);
-  plane->SetPoint1(x1, -1.0, z);
-  plane->SetPoint2(x0, 1.0, z);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(plane->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(0.0, 1.0, 0.0);
-  actor->GetProperty()->LightingOff();
-  return actor;
-}
 }
 
 int main(int, char*[])
@@ -304,8 +285,8 @@ int main(int, char*[])
     Scene occluded = MakeScene("occluded blob", blobImage, blobProperty);
     LookFrom(occluded, 0.0, 0.0, 4.0);
     occluded.Renderer->GetActiveCamera()->SetClippingRange(1.0, 10.0);
-    occluded.Renderer->AddActor(Square(-1.0, 0.0, 0.9));
-    occluded.Renderer->AddActor(Square(0.0, 1.0, -0.9));
+    occluded.Renderer->AddActor(splattest::OpaqueSquare(-1.0, 0.0, 0.9));
+    occluded.Renderer->AddActor(splattest::OpaqueSquare(0.0, 1.0, -0.9));
     const std::vector<double> cpu = Render(occluded, CPU, BLENDED);
     const std::vector<double> openGL = Render(occluded, OPENGL, BLENDED);
     const double rmse = splattest::RMSE(cpu, openGL);

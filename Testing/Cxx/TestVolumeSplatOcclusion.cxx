@@ -6,30 +6,10 @@
 #include "SplatVolumeTestUtilities.h"
 #include "vtkVolumeSplatMapper.h"
 
-#include "vtkActor.h"
-#include "vtkPlaneSource.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
-
 #include <cstdio>
 
 namespace
 {
-vtkSmartPointer<vtkActor> Square(double x0, double x1, double z)
-{
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(x0, -1.0, z);
-  plane->SetPoint1(x1, -1.0, z);
-  plane->SetPoint2(x0, 1.0, z);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(plane->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(0.0, 1.0, 0.0);
-  actor->GetProperty()->LightingOff();
-  return actor;
-}
-
 std::vector<double> Render(bool squares)
 {
   const double sigma = 0.25, peak = 2.0, rgb[3] = { 1.0, 0.3, 0.1 };
@@ -39,8 +19,8 @@ std::vector<double> Render(bool squares)
   splattest::AddVolume(renderer, mapper, splattest::ExtinctionProperty(peak, 1.0 / 24.0, rgb));
   if (squares)
   {
-    renderer->AddActor(Square(-1.0, 0.0, 0.9));
-    renderer->AddActor(Square(0.0, 1.0, -0.9));
+    renderer->AddActor(splattest::OpaqueSquare(-1.0, 0.0, 0.9));
+    renderer->AddActor(splattest::OpaqueSquare(0.0, 1.0, -0.9));
   }
   auto window = splattest::MakeRenderWindow(200, 200);
   window->AddRenderer(renderer);
