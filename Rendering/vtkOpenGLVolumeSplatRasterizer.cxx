@@ -279,6 +279,14 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
   {
     return;
   }
+  GLint largestBuffer = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &largestBuffer);
+  if (static_cast<double>(internal.Count) * internal.KernelStride > largestBuffer)
+  {
+    vtkErrorMacro(<< internal.Count << " kernels exceed this OpenGL's texture buffers ("
+                  << largestBuffer << " texels); use the CPU backend.");
+    return;
+  }
   const int mode = settings->GetOrderingMode();
   const glm::dvec2 viewport(width, height);
 

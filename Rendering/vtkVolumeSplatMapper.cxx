@@ -580,7 +580,7 @@ void vtkVolumeSplatMapper::Render(vtkRenderer* ren, vtkVolume* volume)
   this->GetInputAlgorithm()->Update();
   vtkDataSet* input = this->GetDataSetInput();
   vtkVolumeProperty* property = volume->GetProperty();
-  // Hardware picking of volumes arrives with the OpenGL backend.
+  // Hardware picking of volume splats is not implemented (in either backend).
   if (!input || input->GetNumberOfPoints() == 0 || ren->GetSelector() || !property ||
     !this->UpdateKernels(property))
   {
