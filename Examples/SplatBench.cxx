@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // splat_bench: a benchmark, not a test. Renders the same points with vtkSurfaceSplatMapper (on
-// each backend) and with its peer vtkPointGaussianMapper, in the same run, and prints one CSV row
-// per case: milliseconds per frame (median), splats per second, the process's peak memory so
-// far, what our mapper culled and skipped, and the memory per splat that the case added.
+// each backend) and with its peer vtkPointGaussianMapper, and the same volumes with
+// vtkVolumeSplatMapper (every ordering mode on each backend) and VTK's ray casters (the peer
+// vtkFixedPointVolumeRayCastMapper and vtkGPUVolumeRayCastMapper), in the same run, and prints
+// one CSV row per case: milliseconds per frame (median), splats per second, the process's peak
+// memory so far, what our mapper culled and skipped, the memory per splat that the case added
+// and the ratio of the peer's time to the case's.
 // Run `splat_bench --help` for the options.
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
+#include "SplatVolumeScenes.h"
 #include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
@@ -20,10 +24,12 @@
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
 #include "vtkSmartPointer.h"
+#include "vtkVolume.h"
 
 #include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
@@ -31,6 +37,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -53,10 +60,11 @@ const char* const Usage = R"(Usage: splat_bench [OPTIONS]
 
 Renders points on a unit sphere (Fibonacci sampling, radial normals, radius = sampling spacing)
 and the Stanford bunny (vertices through vtkSurfelGenerator) with vtkSurfaceSplatMapper and with
-vtkPointGaussianMapper (opaque disks of the same radius, emissive off), offscreen, and
-prints CSV rows:
+vtkPointGaussianMapper (opaque disks of the same radius, emissive off), and two volumes with
+vtkVolumeSplatMapper, vtkFixedPointVolumeRayCastMapper and vtkGPUVolumeRayCastMapper, offscreen,
+and prints CSV rows:
   scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb,
-  rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat
+  rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat,peer_ratio,drawn_by
 Settings: vtkSurfaceSplatMapper runs on each backend (the CPU rasterizer, then OpenGL) as
 "default" (exact EWA) on every scene and, on the sphere (closed, outward normals), also as
 "backface" (the actor's BackfaceCulling on); its OpenGL backend also as "approximate" (the
@@ -68,37 +76,71 @@ rendered .. skipped are vtkSurfaceSplatMapper's counts for the last frame (splat
 outside the frustum, culled as back faces, left out as negligible, input points skipped as
 invalid); the OpenGL backend culls in its vertex shader without counting, so its splat counts
 are -1; empty for vtkPointGaussianMapper, which does not report them.
+Volumes: mri is the MRI head ch2.nii.gz (Debian's mricron-data; skipped when absent) with the
+transfer functions and camera of TestVolumeSplatCrossRenderer; gaussians is --kernels random
+anisotropic 3D Gaussians in the unit ball (fixed seed): a "Covariance" array, a "Color" array
+and the peak extinction as scalars through an opacity transfer function. vtkVolumeSplatMapper
+runs in every ordering mode (the setting: blended, clipped, single-axis, depth-sorted) on each
+backend; its points are its kernels (GetNumberOfKernels: voxels of zero opacity left out), and
+splats_per_s is kernels per second. The ray casters (setting "ray cast", one ray per pixel, a
+sample every voxel spacing along it) draw the MRI's voxels and, for gaussians, the mixture
+resampled onto a --grid^3 RGBA grid over the ball's cube (points: the grid's voxels; the
+resampling is not timed; vtkFixedPointVolumeRayCastMapper only: VTK 9.1's
+vtkGPUVolumeRayCastMapper draws that grid nearly transparent). For volumes the counts are: rendered = kernels projected (a kernel
+counts once per list that splats it), frustum_culled, backface_culled empty, negligible =
+kernels of zero opacity (not in the lists), skipped = invalid kernels plus those reaching the
+near plane; the volume data is made once per scene, so bytes_per_splat is the mapper's memory
+(kernel lists, buffers) per kernel. Volume cases time at most 3 frames, the volume marked
+modified before each.
+peer_ratio is the peer's ms_per_frame at the same scene, points and size divided by the row's
+(above 1: faster than the peer): vtkPointGaussianMapper for surfaces, vtkFixedPointVolumeRay-
+CastMapper for volumes. drawn_by is the backend that drew the splat mappers' last frame
+(GetLastBackend; an OpenGL request can end up on the CPU).
 bytes_per_splat is the resident memory the case added (its data, mapper and frames) per point:
 the current resident set size (/proc/self/statm) after the case's frames minus the one before
 its data was built, divided by the number of points. A one-line summary per case goes to stderr.
 
 Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separated):
-  --scenes LIST        sphere, bunny (default sphere,bunny; bunny is skipped when absent)
+  --scenes LIST        sphere, bunny, mri, gaussians (default all; bunny and mri are skipped
+                       when absent)
   --points LIST        sphere point counts (default 100000,1000000,5000000)
+  --kernels N          Gaussians of the gaussians scene (default 1000000)
+  --grid N             grid points per axis of the gaussians resampled for the ray casters
+                       (default 256)
+  --mri-shrink N       the MRI's every N-th voxel per axis, each the mean of its N^3 block
+                       (vtkImageShrink3D; default 1)
   --sizes LIST         square image sizes in pixels (default 512,1024)
-  --mappers LIST       splat (vtkSurfaceSplatMapper), pointgaussian (vtkPointGaussianMapper)
-                       (default splat,pointgaussian)
-  --backends LIST      vtkSurfaceSplatMapper's backends: cpu, opengl (default cpu,opengl)
+  --mappers LIST       splat (vtkSurfaceSplatMapper, vtkVolumeSplatMapper), pointgaussian
+                       (vtkPointGaussianMapper), fixedpoint (vtkFixedPointVolumeRayCastMapper),
+                       gpuraycast (vtkGPUVolumeRayCastMapper) (default all)
+  --backends LIST      the splat mappers' backends: cpu, opengl (default: cpu,opengl for the
+                       surfaces, cpu for the volumes, whose OpenGL rows are slow under llvmpipe;
+                       a list given here applies to both)
   --frames N           at most N timed frames per case (default 10)
   --budget SECONDS     time a case's frames within this many seconds: after the first timed
                        frame, another is timed only while the elapsed time plus the last
                        frame's stays within the budget (default 10)
-  --quick              smoke run: 20000 sphere points, 256x256, 2 frames
+  --quick              smoke run: 20000 sphere points, 20000 Gaussians on a 64^3 grid, the MRI
+                       shrunk by 2, 256x256, 2 frames
   --output FILE        CSV file, also written to stdout (default output/bench/bench.csv)
   --image-dir DIR      also write each case's last frame as a PNG into DIR
   --help               print this help
 
 Environment: SPLAT_DATA_DIR, the folder holding bunny.ply (default: ../shared/data next to the
-source tree).
+source tree); SPLAT_MRI_FILE, the MRI (default /usr/share/mricron/templates/ch2.nii.gz).
 )";
 
 struct Options
 {
-  std::vector<std::string> Scenes = { "sphere", "bunny" };
+  std::vector<std::string> Scenes = { "sphere", "bunny", "mri", "gaussians" };
   std::vector<long long> Points = { 100000, 1000000, 5000000 };
+  long long Kernels = 1000000;
+  long long Grid = 256;
+  int MriShrink = 1;
   std::vector<long long> Sizes = { 512, 1024 };
-  std::vector<std::string> Mappers = { "splat", "pointgaussian" };
+  std::vector<std::string> Mappers = { "splat", "pointgaussian", "fixedpoint", "gpuraycast" };
   std::vector<std::string> Backends = { "cpu", "opengl" };
+  std::vector<std::string> VolumeBackends = { "cpu" }; // --backends sets both
   int Frames = 10;
   double Budget = 10.0;
   std::string Output = "output/bench/bench.csv";
@@ -129,21 +171,32 @@ Options ParseCommandLine(int argc, char* argv[])
   const std::map<std::string, splatexample::OptionHandler> handlers = {
     { "--scenes",
       [&](const std::string& name, const std::string& value) {
-        options.Scenes = SplitList(name, value, { "sphere", "bunny" });
+        options.Scenes = SplitList(name, value, { "sphere", "bunny", "mri", "gaussians" });
       } },
     { "--points",
       [&](const std::string& name, const std::string& value)
       { options.Points = ParseCounts(name, value, 1, 100000000); } },
+    { "--kernels",
+      [&](const std::string& name, const std::string& value)
+      { options.Kernels = ParseCount(name, value, 1, 100000000); } },
+    { "--grid",
+      [&](const std::string& name, const std::string& value)
+      { options.Grid = ParseCount(name, value, 8, 1024); } },
+    { "--mri-shrink",
+      [&](const std::string& name, const std::string& value)
+      { options.MriShrink = static_cast<int>(ParseCount(name, value, 1, 16)); } },
     { "--sizes",
       [&](const std::string& name, const std::string& value)
       { options.Sizes = ParseCounts(name, value, 1, 16384); } },
     { "--mappers",
       [&](const std::string& name, const std::string& value) {
-        options.Mappers = SplitList(name, value, { "splat", "pointgaussian" });
+        options.Mappers =
+          SplitList(name, value, { "splat", "pointgaussian", "fixedpoint", "gpuraycast" });
       } },
     { "--backends",
       [&](const std::string& name, const std::string& value) {
         options.Backends = SplitList(name, value, { "cpu", "opengl" });
+        options.VolumeBackends = options.Backends;
       } },
     { "--frames",
       [&](const std::string& name, const std::string& value)
@@ -161,6 +214,9 @@ Options ParseCommandLine(int argc, char* argv[])
       [&]
       {
         options.Points = { 20000 };
+        options.Kernels = 20000;
+        options.Grid = 64;
+        options.MriShrink = 2;
         options.Sizes = { 256 };
         options.Frames = 2;
       } },
@@ -199,26 +255,41 @@ struct MapperKind
   std::string Setting;
   bool BackfaceCulling = false;             // the actor property's BackfaceCulling
   bool ClosedOnly = false;                  // only for closed, outward-oriented scenes (the sphere)
-  int SplatBackend = vtkSplatBackend::AUTO; // vtkSurfaceSplatMapper's SetBackend
+  int SplatBackend = vtkSplatBackend::AUTO; // the splat mappers' SetBackend
   int FilterMode = vtkSurfaceSplatMapper::EWA;
+  int Ordering = vtkVolumeSplatMapper::BLENDED; // vtkVolumeSplatMapper's SetOrderingMode
 };
 
-// Cases per size, in this order, for the mappers and backends chosen with --mappers and
-// --backends: vtkSurfaceSplatMapper's settings on each backend, then the peer.
+bool Chosen(const std::vector<std::string>& list, const std::string& name)
+{
+  return std::find(list.begin(), list.end(), name) != list.end();
+}
+
+// The backends of our mappers among `chosen` (from --backends), CPU first.
+std::vector<int> SplatBackends(const std::vector<std::string>& chosen)
+{
+  std::vector<int> backends;
+  for (int backend : { vtkSplatBackend::CPU, vtkSplatBackend::OPENGL })
+  {
+    if (Chosen(chosen,
+          vtksys::SystemTools::LowerCase(vtkSplatBackend::GetBackendAsString(backend))))
+    {
+      backends.push_back(backend);
+    }
+  }
+  return backends;
+}
+
+// Cases per size of a surface scene, in this order, for the mappers and backends chosen with
+// --mappers and --backends: vtkSurfaceSplatMapper's settings on each backend, then the peer.
 std::vector<MapperKind> Kinds(const Options& options)
 {
-  const auto chosen = [](const std::vector<std::string>& list, const std::string& name)
-  { return std::find(list.begin(), list.end(), name) != list.end(); };
   std::vector<MapperKind> kinds;
-  if (chosen(options.Mappers, "splat"))
+  if (Chosen(options.Mappers, "splat"))
   {
-    for (int backend : { vtkSplatBackend::CPU, vtkSplatBackend::OPENGL })
+    for (int backend : SplatBackends(options.Backends))
     {
       const std::string name = vtkSplatBackend::GetBackendAsString(backend);
-      if (!chosen(options.Backends, vtksys::SystemTools::LowerCase(name)))
-      {
-        continue;
-      }
       const MapperKind splat{ "splat", "vtkSurfaceSplatMapper", name, "default", false, false,
         backend, vtkSurfaceSplatMapper::EWA };
       kinds.push_back(splat);
@@ -236,9 +307,39 @@ std::vector<MapperKind> Kinds(const Options& options)
       kinds.push_back(backface);
     }
   }
-  if (chosen(options.Mappers, "pointgaussian"))
+  if (Chosen(options.Mappers, "pointgaussian"))
   {
     kinds.push_back({ "pointgaussian", "vtkPointGaussianMapper", "OpenGL", "disk" });
+  }
+  return kinds;
+}
+
+// Cases per size of a volume scene: vtkVolumeSplatMapper in every ordering mode on each
+// backend, then the ray casters (the first, vtkFixedPointVolumeRayCastMapper, is the peer).
+std::vector<MapperKind> VolumeKinds(const Options& options)
+{
+  std::vector<MapperKind> kinds;
+  if (Chosen(options.Mappers, "splat"))
+  {
+    for (int backend : SplatBackends(options.VolumeBackends))
+    {
+      for (int mode : splatexample::OrderingModes())
+      {
+        MapperKind kind{ "splat", "vtkVolumeSplatMapper",
+          vtkSplatBackend::GetBackendAsString(backend), splatexample::OrderingModeName(mode) };
+        kind.SplatBackend = backend;
+        kind.Ordering = mode;
+        kinds.push_back(kind);
+      }
+    }
+  }
+  if (Chosen(options.Mappers, "fixedpoint"))
+  {
+    kinds.push_back({ "fixedpoint", "vtkFixedPointVolumeRayCastMapper", "CPU", "ray cast" });
+  }
+  if (Chosen(options.Mappers, "gpuraycast"))
+  {
+    kinds.push_back({ "gpuraycast", "vtkGPUVolumeRayCastMapper", "OpenGL", "ray cast" });
   }
   return kinds;
 }
@@ -254,6 +355,95 @@ vtkSmartPointer<vtkMapper> MakeMapper(const MapperKind& kind, vtkPolyData* surfe
     return mapper;
   }
   return splatexample::PointGaussianDisks(surfels);
+}
+
+// What a case draws: a prop (an actor or a volume) with its mapper, and the mapper's input.
+struct Stage
+{
+  vtkSmartPointer<vtkProp3D> Prop;
+  vtkSmartPointer<vtkDataSet> Data;
+};
+
+// A scene: its cases, how to make each case's prop and where to put the camera.
+struct Scene
+{
+  std::string Name;
+  bool Closed = false; // closed and outward-oriented: the backface setting applies
+  std::vector<MapperKind> Kinds;
+  std::string Peer; // the MapperKind::Name whose time the peer_ratio column divides
+  std::function<Stage(const MapperKind&)> Make;
+  std::function<void(vtkRenderer*, const Stage&)> Place;
+  int Frames = 0; // at most this many timed frames per case (0: --frames)
+};
+
+// A surface scene: the points made afresh for every case by makeData (so that the case's memory
+// includes them), an actor, the camera framing the points.
+Scene SurfaceScene(const std::string& name, bool closed,
+  const std::function<vtkSmartPointer<vtkPolyData>()>& makeData, const Options& options)
+{
+  Scene scene;
+  scene.Name = name;
+  scene.Closed = closed;
+  scene.Kinds = Kinds(options);
+  scene.Peer = "pointgaussian";
+  scene.Make = [makeData](const MapperKind& kind)
+  {
+    vtkSmartPointer<vtkPolyData> surfels = makeData();
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(MakeMapper(kind, surfels));
+    actor->GetProperty()->SetColor(0.85, 0.75, 0.6);
+    actor->GetProperty()->SetBackfaceCulling(kind.BackfaceCulling);
+    return Stage{ actor.Get(), surfels };
+  };
+  // The same view for both mappers: their bounds differ (ours include the splat radii).
+  scene.Place = [](vtkRenderer* renderer, const Stage& stage)
+  { renderer->ResetCamera(stage.Data->GetBounds()); };
+  return scene;
+}
+
+// A volume scene: vtkVolumeSplatMapper draws `kernels` (image data or a point set of Gaussians)
+// with `property`; the ray casters draw the grid of makeGrid with its property (made on first
+// use, then kept: resampling the Gaussians takes a while), sampled along their rays at the
+// grid's spacing; vtkGPUVolumeRayCastMapper only where `gpuRayCaster`. The data is made once,
+// outside the cases: bytes_per_splat counts the mapper and its frames.
+Scene VolumeScene(const std::string& name, vtkDataSet* kernels, vtkVolumeProperty* property,
+  const std::function<splatexample::ResampledVolume()>& makeGrid,
+  const std::function<void(vtkRenderer*)>& place, bool gpuRayCaster, const Options& options)
+{
+  Scene scene;
+  scene.Name = name;
+  scene.Kinds = VolumeKinds(options);
+  if (!gpuRayCaster)
+  {
+    scene.Kinds.erase(std::remove_if(scene.Kinds.begin(), scene.Kinds.end(),
+                        [](const MapperKind& kind) { return kind.Name == "gpuraycast"; }),
+      scene.Kinds.end());
+  }
+  scene.Peer = "fixedpoint";
+  scene.Frames = 3; // TestVolumeSplatCrossRenderer's three frames after the first
+  vtkSmartPointer<vtkDataSet> data = kernels;
+  vtkSmartPointer<vtkVolumeProperty> splatProperty = property;
+  auto grid = std::make_shared<splatexample::ResampledVolume>();
+  scene.Make = [=](const MapperKind& kind)
+  {
+    vtkNew<vtkVolume> volume;
+    if (kind.Name == "splat")
+    {
+      volume->SetMapper(splatexample::VolumeSplat(data, kind.SplatBackend, kind.Ordering));
+      volume->SetProperty(splatProperty);
+      return Stage{ volume.Get(), data };
+    }
+    if (!grid->Image)
+    {
+      *grid = makeGrid();
+    }
+    volume->SetMapper(splatexample::RayCaster(grid->Image, kind.Name == "gpuraycast",
+      splatexample::SmallestSpacing(grid->Image)));
+    volume->SetProperty(grid->Property);
+    return Stage{ volume.Get(), grid->Image };
+  };
+  scene.Place = [place](vtkRenderer* renderer, const Stage&) { place(renderer); };
+  return scene;
 }
 
 double PeakResidentMegabytes()
@@ -287,23 +477,29 @@ void ReleaseFreeHeapMemory()
 #endif
 }
 
-// Median milliseconds per frame after a warm-up frame (surfel build, buffer upload, shader
-// compilation): at least one frame, at most Frames, and after the first only while the elapsed
-// time plus the last frame's stays within the budget (so that slow cases, such as
-// vtkPointGaussianMapper on millions of points under llvmpipe, keep to it). `frames` gets the
-// number of timed frames.
-double MillisecondsPerFrame(vtkRenderWindow* window, const Options& options, int& frames)
+// Median milliseconds per frame after a warm-up frame (surfel or kernel build, buffer upload,
+// shader compilation): at least one frame, at most `maxFrames`, and after the first only while
+// the elapsed time plus the last frame's stays within the budget (so that slow cases, such as
+// vtkPointGaussianMapper on millions of points under llvmpipe, keep to it). A volume is marked
+// modified before each frame, as in TestVolumeSplatCrossRenderer. `frames` gets the number of
+// timed frames.
+double MillisecondsPerFrame(vtkRenderWindow* window, const Options& options, int maxFrames,
+  vtkVolume* volume, int& frames)
 {
   using Clock = std::chrono::steady_clock;
   window->Render();
   window->WaitForCompletion();
   std::vector<double> ms;
   const auto start = Clock::now();
-  while (static_cast<int>(ms.size()) < options.Frames &&
+  while (static_cast<int>(ms.size()) < maxFrames &&
     (ms.empty() ||
       std::chrono::duration<double>(Clock::now() - start).count() + ms.back() * 1e-3 <=
         options.Budget))
   {
+    if (volume)
+    {
+      volume->Modified();
+    }
     const auto frameStart = Clock::now();
     window->Render();
     // OpenGL runs asynchronously: the frame is done when the GL queue is.
@@ -317,21 +513,54 @@ double MillisecondsPerFrame(vtkRenderWindow* window, const Options& options, int
 // What one case measured.
 struct CaseResult
 {
+  const MapperKind* Kind = nullptr;
   vtkIdType Points = 0;
   double Milliseconds = 0.0;
   int Frames = 0;
-  bool HasCounts = false; // vtkSurfaceSplatMapper's statistics of the last frame
-  vtkIdType Rendered = 0;
-  vtkIdType FrustumCulled = 0;
-  vtkIdType BackfaceCulled = 0;
-  vtkIdType Negligible = 0;
-  vtkIdType Skipped = 0;
+  bool HasCounts = false; // the splat mapper's statistics of the last frame
+  // rendered, frustum_culled, backface_culled, negligible, skipped (see the usage)
+  std::array<std::string, 5> Counts;
+  std::string DrawnBy; // the splat mappers' GetLastBackend
   long long ResidentGrowth = 0; // bytes; see MeasureCase
   bool HasResidentGrowth = false;
 };
 
-// Builds one case's data (makeData) and mapper, renders it in `window` and returns what it
-// measured; the case's actor, mapper and data are released on return.
+// The splat mappers' statistics of the last frame, in the columns rendered .. skipped (see the
+// usage for what they mean for volumes), and the backend that drew it.
+void CollectCounts(vtkProp3D* prop, CaseResult& result)
+{
+  if (auto* actor = vtkActor::SafeDownCast(prop))
+  {
+    if (auto* splat = vtkSurfaceSplatMapper::SafeDownCast(actor->GetMapper()))
+    {
+      result.HasCounts = true;
+      result.Counts = { std::to_string(splat->GetNumberOfRenderedSplats()),
+        std::to_string(splat->GetNumberOfFrustumCulledSplats()),
+        std::to_string(splat->GetNumberOfBackfaceCulledSplats()),
+        std::to_string(splat->GetNumberOfNegligibleSplats()),
+        std::to_string(splat->GetNumberOfSkippedPoints()) };
+      result.DrawnBy = vtkSplatBackend::GetBackendAsString(splat->GetLastBackend());
+    }
+  }
+  else if (auto* volume = vtkVolume::SafeDownCast(prop))
+  {
+    if (auto* splat = vtkVolumeSplatMapper::SafeDownCast(volume->GetMapper()))
+    {
+      result.Points = splat->GetNumberOfKernels();
+      result.HasCounts = true;
+      result.Counts = { std::to_string(splat->GetNumberOfProjectedKernels()),
+        std::to_string(splat->GetNumberOfFrustumCulledKernels()), "",
+        std::to_string(splat->GetNumberOfTransparentKernels()),
+        std::to_string(
+          splat->GetNumberOfInvalidKernels() + splat->GetNumberOfNearPlaneKernels()) };
+      result.DrawnBy = vtkSplatBackend::GetBackendAsString(splat->GetLastBackend());
+    }
+  }
+}
+
+// Makes one case's prop (scene.Make), renders it in `window` and returns what it measured; the
+// case's prop, mapper and (for surface scenes) data are released on return. The points are the
+// input's, or vtkVolumeSplatMapper's kernels (its lists, transparent voxels left out).
 //
 // Memory per splat: the current resident set size (/proc/self/statm) is read twice, once
 // before the case's data and mapper are built and once after its timed frames, while they are
@@ -346,28 +575,25 @@ struct CaseResult
 // end of the case, not a peak: transient allocations freed before the last frame are not in
 // it. Shared one-time costs (shader compilation, the driver's first-use allocations) land on the
 // first case that triggers them. At small point counts the per-pixel buffers (the rasterizer's
-// fragments at the case's image size) dominate.
-CaseResult MeasureCase(vtkRenderWindow* window, const MapperKind& kind,
-  const std::function<vtkSmartPointer<vtkPolyData>()>& makeData, const Options& options,
-  const std::string& scene, long long size)
+// fragments at the case's image size) dominate. Volume scenes make their data once, before
+// their cases: there the growth is the mapper's (kernel lists, buffers, textures) alone.
+CaseResult MeasureCase(vtkRenderWindow* window, const MapperKind& kind, const Scene& scene,
+  const Options& options, long long size)
 {
   vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
   CaseResult result;
+  result.Kind = &kind;
   ReleaseFreeHeapMemory();
   const long long before = CurrentResidentBytes();
   {
-    vtkSmartPointer<vtkPolyData> surfels = makeData();
-    result.Points = surfels->GetNumberOfPoints();
-    vtkSmartPointer<vtkMapper> mapper = MakeMapper(kind, surfels);
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    actor->GetProperty()->SetColor(0.85, 0.75, 0.6);
-    actor->GetProperty()->SetBackfaceCulling(kind.BackfaceCulling);
-    renderer->AddActor(actor);
-    // The same view for both mappers: their bounds differ (ours include the splat radii).
-    renderer->ResetCamera(surfels->GetBounds());
+    const Stage stage = scene.Make(kind);
+    result.Points = stage.Data->GetNumberOfPoints();
+    renderer->AddViewProp(stage.Prop);
+    scene.Place(renderer, stage);
 
-    result.Milliseconds = MillisecondsPerFrame(window, options, result.Frames);
+    result.Milliseconds = MillisecondsPerFrame(window, options,
+      scene.Frames > 0 ? std::min(scene.Frames, options.Frames) : options.Frames,
+      vtkVolume::SafeDownCast(stage.Prop), result.Frames);
     ReleaseFreeHeapMemory();
     const long long after = CurrentResidentBytes();
     if (before >= 0 && after >= 0)
@@ -375,33 +601,95 @@ CaseResult MeasureCase(vtkRenderWindow* window, const MapperKind& kind,
       result.ResidentGrowth = after - before;
       result.HasResidentGrowth = true;
     }
-    if (auto* splat = vtkSurfaceSplatMapper::SafeDownCast(mapper))
-    {
-      result.HasCounts = true;
-      result.Rendered = splat->GetNumberOfRenderedSplats();
-      result.FrustumCulled = splat->GetNumberOfFrustumCulledSplats();
-      result.BackfaceCulled = splat->GetNumberOfBackfaceCulledSplats();
-      result.Negligible = splat->GetNumberOfNegligibleSplats();
-      result.Skipped = splat->GetNumberOfSkippedPoints();
-    }
+    CollectCounts(stage.Prop, result);
     if (!options.ImageDir.empty())
     {
+      std::string setting = kind.Setting;
+      std::replace(setting.begin(), setting.end(), ' ', '-');
       splatexample::WritePNG(window,
-        options.ImageDir + "/" + scene + "-" + std::to_string(result.Points) + "-" +
+        options.ImageDir + "/" + scene.Name + "-" + std::to_string(result.Points) + "-" +
           std::to_string(size) + "-" + kind.Name + "-" +
-          vtksys::SystemTools::LowerCase(kind.Backend) + "-" + kind.Setting + ".png");
+          vtksys::SystemTools::LowerCase(kind.Backend) + "-" + setting + ".png");
     }
-    // Releases the case's graphics resources; the actor, mapper and data go with this scope.
+    // Releases the case's graphics resources; the prop, mapper and data go with this scope.
     renderer->RemoveAllViewProps();
   }
   return result;
 }
 
-// Renders one scene (made afresh for every case by makeData) at every size with every chosen
-// mapper setting into `window` and emits a CSV row per case; returns the number of rows.
-int MeasureScene(vtkRenderWindow* window, const std::string& scene, bool closed,
-  const std::function<vtkSmartPointer<vtkPolyData>()>& makeData, const Options& options,
-  std::ostream& csv)
+// The CSV row of a case; `peerMilliseconds` is the peer's time at the same size (0: not
+// measured).
+std::string CsvRow(const std::string& scene, long long size, const CaseResult& r,
+  double peerMilliseconds)
+{
+  const MapperKind& kind = *r.Kind;
+  std::ostringstream row;
+  row << scene << "," << kind.Class << "," << kind.Backend << "," << kind.Setting << ","
+      << r.Points << "," << size << "," << size << "," << std::fixed << std::setprecision(2)
+      << r.Milliseconds << "," << std::setprecision(0) << r.Points / (r.Milliseconds * 1e-3)
+      << "," << std::setprecision(1) << PeakResidentMegabytes() << ",";
+  for (const std::string& count : r.Counts)
+  {
+    row << count << ",";
+  }
+  if (r.HasResidentGrowth && r.Points > 0)
+  {
+    row << std::setprecision(1) << static_cast<double>(r.ResidentGrowth) / r.Points;
+  }
+  row << ",";
+  if (peerMilliseconds > 0.0 && r.Milliseconds > 0.0)
+  {
+    row << std::setprecision(3) << peerMilliseconds / r.Milliseconds;
+  }
+  row << "," << r.DrawnBy << "\n";
+  return row.str();
+}
+
+// The one-line summary of a case on stderr.
+std::string Summary(const std::string& scene, long long size, const CaseResult& r)
+{
+  const MapperKind& kind = *r.Kind;
+  const bool volume = kind.Class != "vtkSurfaceSplatMapper" && kind.Class != "vtkPointGaussianMapper";
+  std::ostringstream summary;
+  summary << "splat_bench: " << scene << " " << r.Points << (volume ? " kernels " : " points ")
+          << size << "x" << size << " " << kind.Class << " " << kind.Backend << " "
+          << kind.Setting << ": " << std::fixed << std::setprecision(2) << r.Milliseconds
+          << " ms/frame (median of " << r.Frames << "), " << std::setprecision(0)
+          << r.Points / (r.Milliseconds * 1e-3) << (volume ? " kernels/s" : " splats/s");
+  if (!r.DrawnBy.empty())
+  {
+    summary << ", drawn by " << r.DrawnBy;
+  }
+  if (r.HasCounts)
+  {
+    summary << (volume ? "; projected " : "; rendered ") << r.Counts[0] << ", frustum culled "
+            << r.Counts[1];
+    if (!volume)
+    {
+      summary << ", backface culled " << r.Counts[2] << ", negligible " << r.Counts[3]
+              << ", skipped " << r.Counts[4];
+    }
+    else
+    {
+      summary << ", transparent " << r.Counts[3] << ", invalid or at the near plane "
+              << r.Counts[4];
+    }
+  }
+  if (r.HasResidentGrowth)
+  {
+    summary << "; RSS +" << std::setprecision(1) << r.ResidentGrowth / (1024.0 * 1024.0) << " MB";
+    if (r.Points > 0)
+    {
+      summary << " (" << static_cast<double>(r.ResidentGrowth) / r.Points << " B/splat)";
+    }
+  }
+  return summary.str();
+}
+
+// Renders one scene at every size with every case into `window` and emits a CSV row per case,
+// each size's rows once its peer has run (for the ratio); returns the number of rows.
+int MeasureScene(
+  vtkRenderWindow* window, const Scene& scene, const Options& options, std::ostream& csv)
 {
   vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
   int rows = 0;
@@ -412,60 +700,29 @@ int MeasureScene(vtkRenderWindow* window, const std::string& scene, bool closed,
     window->SetSize(static_cast<int>(size), static_cast<int>(size));
     window->Render();
     window->WaitForCompletion();
-    for (const MapperKind& kind : Kinds(options))
+    std::vector<CaseResult> results;
+    double peerMilliseconds = 0.0;
+    for (const MapperKind& kind : scene.Kinds)
     {
-      if (kind.ClosedOnly && !closed)
+      if (kind.ClosedOnly && !scene.Closed)
       {
         continue;
       }
-      std::cerr << "splat_bench: " << scene << ", " << size << "x" << size << ", " << kind.Class
-                << " (" << kind.Backend << ", " << kind.Setting << ") ...\n";
-      const CaseResult r = MeasureCase(window, kind, makeData, options, scene, size);
-
-      std::ostringstream row;
-      row << scene << "," << kind.Class << "," << kind.Backend << "," << kind.Setting << ","
-          << r.Points << "," << size << "," << size << "," << std::fixed << std::setprecision(2)
-          << r.Milliseconds << "," << std::setprecision(0) << r.Points / (r.Milliseconds * 1e-3)
-          << "," << std::setprecision(1) << PeakResidentMegabytes() << ",";
-      if (r.HasCounts)
+      std::cerr << "splat_bench: " << scene.Name << ", " << size << "x" << size << ", "
+                << kind.Class << " (" << kind.Backend << ", " << kind.Setting << ") ...\n";
+      results.push_back(MeasureCase(window, kind, scene, options, size));
+      std::cerr << Summary(scene.Name, size, results.back()) << "\n";
+      if (kind.Name == scene.Peer)
       {
-        row << r.Rendered << "," << r.FrustumCulled << "," << r.BackfaceCulled << ","
-            << r.Negligible << "," << r.Skipped << ",";
+        peerMilliseconds = results.back().Milliseconds;
       }
-      else
-      {
-        row << ",,,,,";
-      }
-      if (r.HasResidentGrowth && r.Points > 0)
-      {
-        row << std::setprecision(1) << static_cast<double>(r.ResidentGrowth) / r.Points;
-      }
-      row << "\n";
-      std::cout << row.str() << std::flush;
-      csv << row.str() << std::flush;
+    }
+    for (const CaseResult& r : results)
+    {
+      const std::string row = CsvRow(scene.Name, size, r, peerMilliseconds);
+      std::cout << row << std::flush;
+      csv << row << std::flush;
       ++rows;
-
-      std::ostringstream summary;
-      summary << "splat_bench: " << scene << " " << r.Points << " points " << size << "x" << size
-              << " " << kind.Class << " " << kind.Backend << " " << kind.Setting << ": "
-              << std::fixed << std::setprecision(2) << r.Milliseconds << " ms/frame (median of "
-              << r.Frames << ")";
-      if (r.HasCounts)
-      {
-        summary << "; rendered " << r.Rendered << ", frustum culled " << r.FrustumCulled
-                << ", backface culled " << r.BackfaceCulled << ", negligible " << r.Negligible
-                << ", skipped " << r.Skipped;
-      }
-      if (r.HasResidentGrowth)
-      {
-        summary << "; RSS +" << std::setprecision(1) << r.ResidentGrowth / (1024.0 * 1024.0)
-                << " MB";
-        if (r.Points > 0)
-        {
-          summary << " (" << static_cast<double>(r.ResidentGrowth) / r.Points << " B/splat)";
-        }
-      }
-      std::cerr << summary.str() << "\n";
     }
   }
   return rows;
@@ -480,10 +737,12 @@ int Run(const Options& options)
   {
     throw std::runtime_error("cannot write '" + options.Output + "'");
   }
-  // The required columns first, then the culling counts and the memory per splat.
+  // The required columns first, then the culling counts, the memory per splat, the ratio to
+  // the peer and the backend that drew.
   const char* const header =
     "scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb,"
-    "rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat\n";
+    "rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat,peer_ratio,"
+    "drawn_by\n";
   std::cout << header << std::flush;
   csv << header << std::flush;
 
@@ -491,10 +750,9 @@ int Run(const Options& options)
   vtkSmartPointer<vtkRenderWindow> window = splatexample::MakeOffscreenWindow();
   window->GetRenderers()->GetFirstRenderer()->SetBackground(0.1, 0.1, 0.15);
 
-  // The process's peak memory only grows: the small bunny first, then the spheres by size.
-  const auto wants = [&](const char* scene) {
-    return std::find(options.Scenes.begin(), options.Scenes.end(), scene) != options.Scenes.end();
-  };
+  // The process's peak memory only grows: the small bunny first, then the spheres by size, then
+  // the volumes.
+  const auto wants = [&](const char* scene) { return Chosen(options.Scenes, scene); };
   int rows = 0;
   if (wants("bunny"))
   {
@@ -502,8 +760,9 @@ int Run(const Options& options)
     if (vtkPLYReader::CanReadFile(bunny.c_str()))
     {
       // The bunny has holes (its base): no backface setting.
-      rows += MeasureScene(
-        window, "bunny", false, [&]() { return BunnySurfels(bunny); }, options, csv);
+      rows += MeasureScene(window,
+        SurfaceScene("bunny", false, [&]() { return BunnySurfels(bunny); }, options), options,
+        csv);
     }
     else
     {
@@ -514,10 +773,46 @@ int Run(const Options& options)
   {
     for (long long n : options.Points)
     {
-      rows += MeasureScene(
-        window, "sphere", true, [n]() { return UnitSphere(static_cast<vtkIdType>(n)); }, options,
-        csv);
+      rows += MeasureScene(window,
+        SurfaceScene(
+          "sphere", true, [n]() { return UnitSphere(static_cast<vtkIdType>(n)); }, options),
+        options, csv);
     }
+  }
+  if (wants("mri"))
+  {
+    if (vtkSmartPointer<vtkImageData> head = splatexample::MriHead(options.MriShrink))
+    {
+      rows += MeasureScene(window,
+        VolumeScene("mri", head, splatexample::MriProperty(),
+          [&]() { return splatexample::ResampledVolume{ head, splatexample::MriProperty() }; },
+          [&](vtkRenderer* renderer) { splatexample::PlaceMriCamera(renderer, head); }, true,
+          options),
+        options, csv);
+    }
+    else
+    {
+      std::cerr << "splat_bench: mri skipped: " << splatexample::MriFile()
+                << " is absent (Debian package mricron-data)\n";
+    }
+  }
+  if (wants("gaussians"))
+  {
+    vtkSmartPointer<vtkPolyData> kernels =
+      splatexample::RandomGaussians(static_cast<vtkIdType>(options.Kernels));
+    vtkSmartPointer<vtkVolumeProperty> property = splatexample::GaussiansProperty(kernels);
+    const auto resample = [&]()
+    {
+      std::cerr << "splat_bench: gaussians: resampling onto " << options.Grid << "^3 voxels\n";
+      return splatexample::ResampleMixture(
+        splatexample::MixtureOf(kernels, property), static_cast<int>(options.Grid));
+    };
+    // Not vtkGPUVolumeRayCastMapper: VTK 9.1's draws the RGBA grid (dependent components) nearly
+    // transparent (see splatexample::ResampleMixture).
+    rows += MeasureScene(window,
+      VolumeScene("gaussians", kernels, property, resample, splatexample::PlaceGaussiansCamera,
+        false, options),
+      options, csv);
   }
   std::cerr << "splat_bench: " << rows << " rows; CSV written to "
             << vtksys::SystemTools::CollapseFullPath(options.Output) << "\n";
