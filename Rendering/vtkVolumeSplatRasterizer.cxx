@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkVolumeSplatRasterizer.h"
 
+#include "SplatExponential.h"
 #include "SplatVolumeKernel.h"
 
 #include "vtkObjectFactory.h"
@@ -64,13 +65,22 @@ struct vtkVolumeSplatRasterizer::PixelLists
   std::array<std::vector<Band>, 4> Bands;
 };
 
+// A kernel in a band's bin of a list, with its compositing layer (see LayerCompositor).
+struct BinnedKernel
+{
+  vtkVolumeSplatRasterizer::ScreenKernel Kernel;
+  vtkIdType Layer;
+};
+
 struct vtkVolumeSplatRasterizer::Internals
 {
   std::vector<ScreenKernel> Kernels;
   PixelLists Pixels;
-  // Per list, kernels band by band in list order: Offsets per band into Indices.
+  // Per list, copies of the kernels band by band in list order (read in sequence by the
+  // compositing, where the lists' order scatters the kernels in memory): Offsets per band into
+  // Bins.
   std::array<std::vector<vtkIdType>, 4> Offsets;
-  std::array<std::vector<vtkIdType>, 4> Indices;
+  std::array<std::vector<BinnedKernel>, 4> Bins;
   std::array<std::vector<glm::vec4>, 4> Buffers;
 };
 
@@ -79,59 +89,136 @@ namespace
 using ScreenKernel = vtkVolumeSplatRasterizer::ScreenKernel;
 using PixelLists = vtkVolumeSplatRasterizer::PixelLists;
 
-// Composites kernel s under the pixels of rows [rowBegin, rowEnd] whose weight for the list has
-// the traversal's sign (all pixels when weights is null), front to back.
-void CompositeKernel(const ScreenKernel& s, int rowBegin, int rowEnd, int width, float cutoff,
-  bool peakOpacity, const float* weights, bool ascending, const float* sceneDepths,
-  glm::vec4* buffer)
+// Composites the kernels of one list into one band of its buffer, front to back, layer by layer.
+// A layer is a sheet of the grid for image data (kernels side by side at one index along the
+// list's axis, whose order within the sheet is arbitrary) and a single kernel otherwise. A
+// layer's footprints are first summed per pixel as optical depth and optical-depth-weighted
+// color; the layer then goes under the pixel once, with opacity 1 - exp(-sum). That is the
+// transmittance of compositing its kernels one by one, with colors weighted by each kernel's
+// share of the optical depth, independent of their order, and one exponential per pixel and
+// layer instead of one per kernel and pixel.
+class LayerCompositor
 {
-  const int y0 = std::max(s.Y0, rowBegin);
-  const int y1 = std::min(s.Y1, rowEnd);
-  for (int y = y0; y <= y1; ++y)
+public:
+  LayerCompositor(int width, int rowBegin, int rowEnd, float cutoff, bool peakOpacity,
+    const float* sceneDepths)
+    : Width(width)
+    , RowBegin(rowBegin)
+    , RowEnd(rowEnd)
+    , Cutoff(cutoff)
+    , PeakOpacity(peakOpacity)
+    , Stride(width + Lanes)
+    , Spans(rowEnd - rowBegin + 1, glm::ivec2(std::numeric_limits<int>::max(), -1))
   {
-    const float dy = y + 0.5f - s.CenterY;
-    // The row's span inside the ellipse: roots of XX dx^2 + XY dy dx + YY dy^2 = cutoff.
-    const float bq = s.ConicXY * dy;
-    const float discriminant = bq * bq - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - cutoff);
-    if (!(discriminant > 0.0f))
+    const std::size_t size = static_cast<std::size_t>(rowEnd - rowBegin + 1) * this->Stride;
+    for (auto& sum : this->Sums)
     {
-      continue;
+      sum.assign(size, 0.0f);
     }
-    const float root = std::sqrt(discriminant);
-    const float inverse = 0.5f / s.ConicXX;
-    const int xBegin =
-      std::max(s.X0, static_cast<int>(std::ceil(s.CenterX + (-bq - root) * inverse - 0.5f)));
-    const int xEnd =
-      std::min(s.X1, static_cast<int>(std::floor(s.CenterX + (-bq + root) * inverse - 0.5f)));
-    const std::size_t row = static_cast<std::size_t>(y) * width;
-    for (int x = xBegin; x <= xEnd; ++x)
+    this->SceneDepths.assign(size, std::numeric_limits<float>::infinity());
+    for (int y = rowBegin; sceneDepths && y <= rowEnd; ++y)
     {
-      const std::size_t p = row + x;
-      if (weights && !(ascending ? weights[p] > 0.0f : weights[p] < 0.0f))
-      {
-        continue;
-      }
-      glm::vec4& c = buffer[p];
-      if (c.a >= TerminationAlpha || (sceneDepths && s.Depth > sceneDepths[p]))
-      {
-        continue;
-      }
-      const float dx = x + 0.5f - s.CenterX;
-      const float beta = s.ConicXX * dx * dx + s.ConicXY * dx * dy + s.ConicYY * dy * dy;
-      if (!(beta < cutoff))
-      {
-        continue;
-      }
-      const float g = s.Amplitude * std::exp(-beta);
-      const float alpha = peakOpacity ? std::min(g, MaximumPeakOpacity) : -std::expm1(-g);
-      const float a = (1.0f - c.a) * alpha;
-      c.r += a * s.Color[0];
-      c.g += a * s.Color[1];
-      c.b += a * s.Color[2];
-      c.a += a;
+      std::copy_n(sceneDepths + static_cast<std::size_t>(y) * width, width,
+        this->SceneDepths.begin() + static_cast<std::size_t>(y - rowBegin) * this->Stride);
     }
   }
-}
+
+  /// Adds kernel s to the current layer.
+  void Add(const ScreenKernel& s)
+  {
+    const int y0 = std::max(s.Y0, this->RowBegin);
+    const int y1 = std::min(s.Y1, this->RowEnd);
+    const float xx = s.ConicXX;
+    const float amplitude = s.Amplitude;
+    const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
+    const float kernelDepth = s.Depth;
+    const float cutoff = this->Cutoff;
+    const int columns = s.X1 - s.X0 + 1;
+    // Whole groups of lanes over the box's columns, the cutoff ellipse as a mask: no per-row
+    // span and no scalar remainder.
+    const int count = ((columns + Lanes - 1) / Lanes) * Lanes;
+    const float dx0 = s.X0 + 0.5f - s.CenterX;
+    for (int y = y0; y <= y1; ++y)
+    {
+      const float dy = y + 0.5f - s.CenterY;
+      const float bq = s.ConicXY * dy;
+      const float yTerm = s.ConicYY * dy * dy;
+      glm::ivec2& span = this->Spans[y - this->RowBegin];
+      span = glm::ivec2(std::min(span.x, s.X0), std::max(span.y, s.X1));
+      const std::size_t row = static_cast<std::size_t>(y - this->RowBegin) * this->Stride + s.X0;
+      float* __restrict depth = this->Sums[3].data() + row;
+      float* __restrict r = this->Sums[0].data() + row;
+      float* __restrict g = this->Sums[1].data() + row;
+      float* __restrict b = this->Sums[2].data() + row;
+      const float* __restrict sceneDepths = this->SceneDepths.data() + row;
+      for (int i = 0; i < count; ++i)
+      {
+        const float dx = dx0 + static_cast<float>(i);
+        const float beta = (xx * dx + bq) * dx + yTerm;
+        const float e = amplitude * splat::NegativeExponential(beta);
+        // Behind the opaque scene the kernel adds nothing.
+        const bool inside = (beta < cutoff) & (i < columns) & (kernelDepth <= sceneDepths[i]);
+        const float t = inside ? e : 0.0f;
+        depth[i] += t;
+        r[i] += t * red;
+        g[i] += t * green;
+        b[i] += t * blue;
+      }
+    }
+  }
+
+  /// Puts the current layer under the band's pixels of `buffer` whose weight for the list has
+  /// the traversal's sign (all pixels when weights is null), and starts a new layer.
+  void Flush(const float* weights, bool ascending, glm::vec4* buffer)
+  {
+    for (int y = this->RowBegin; y <= this->RowEnd; ++y)
+    {
+      glm::ivec2& span = this->Spans[y - this->RowBegin];
+      const std::size_t row = static_cast<std::size_t>(y - this->RowBegin) * this->Stride;
+      const std::size_t pixelRow = static_cast<std::size_t>(y) * this->Width;
+      for (int x = span.x; x <= span.y; ++x)
+      {
+        const std::size_t q = row + x;
+        const float depth = this->Sums[3][q];
+        const glm::vec3 color(this->Sums[0][q], this->Sums[1][q], this->Sums[2][q]);
+        for (auto& sum : this->Sums)
+        {
+          sum[q] = 0.0f;
+        }
+        const std::size_t p = pixelRow + x;
+        glm::vec4& c = buffer[p];
+        if (!(depth > 0.0f) || c.a >= TerminationAlpha ||
+          (weights && !(ascending ? weights[p] > 0.0f : weights[p] < 0.0f)))
+        {
+          continue;
+        }
+        // 1 - exp(-t) loses digits only where the layer's opacity is far below an 8-bit step.
+        const float alpha = this->PeakOpacity ? std::min(depth, MaximumPeakOpacity)
+                                              : 1.0f - splat::NegativeExponential(depth);
+        const float coverage = (1.0f - c.a) * alpha;
+        c += glm::vec4((coverage / depth) * color, coverage);
+      }
+      span = glm::ivec2(std::numeric_limits<int>::max(), -1);
+    }
+  }
+
+private:
+  int Width;
+  int RowBegin;
+  int RowEnd;
+  float Cutoff;
+  bool PeakOpacity;
+  // Band rows are padded by a group of lanes, which the last group of a kernel at the right
+  // edge may reach (adding zeros).
+  static constexpr int Lanes = 4;
+  int Stride;
+  // Per band pixel: the opaque scene's eye depth (infinite where there is none).
+  std::vector<float> SceneDepths;
+  // Per band pixel: optical depth times red, green, blue, and optical depth (opacity in the
+  // peak model), in separate arrays so that the row loop vectorizes.
+  std::array<std::vector<float>, 4> Sums;
+  std::vector<glm::ivec2> Spans; // per band row: the columns the layer touched
+};
 }
 
 //------------------------------------------------------------------------------
@@ -434,6 +521,19 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
 
   // 3. The lists the frame needs, built if missing, and binned into bands in list order; a
   // kernel joins a band's bin when its box overlaps the band's pixels that use the list.
+  // The layer of kernel k in list `list`: its sheet along the list's axis for image data, itself
+  // otherwise.
+  const glm::ivec3 dimensions = input.GridDimensions;
+  auto layerOf = [&input, dimensions](int list, vtkIdType k) -> vtkIdType
+  {
+    if (!input.GridIds || list == DepthList)
+    {
+      return k;
+    }
+    const vtkIdType id = input.GridIds[k];
+    const vtkIdType nx = dimensions.x, ny = dimensions.y;
+    return list == 0 ? id % nx : (list == 1 ? (id / nx) % ny : id / (nx * ny));
+  };
   std::array<bool, 4> used{};
   if (mode == DEPTH_SORTED)
   {
@@ -459,9 +559,6 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
       continue;
     }
     const std::vector<PixelLists::Band>& listBands = pixelLists.Bands[list];
-    std::vector<vtkIdType>& offsets = this->Internal->Offsets[list];
-    std::vector<vtkIdType>& indices = this->Internal->Indices[list];
-    offsets.assign(bands + 1, 0);
     auto forEachBand = [&](const ScreenKernel& s, auto&& visit)
     {
       bool any = false;
@@ -475,28 +572,66 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
       }
       return any;
     };
+    // In parallel over chunks of the list: each chunk counts its kernels per band, the counts
+    // become each chunk's start in each band's bin, and each chunk fills its places, so the
+    // bins are in list order whatever the number of threads.
     const std::vector<vtkIdType>& order = this->Lists[list];
-    vtkIdType projected = 0;
-    for (vtkIdType k : order)
+    const vtkIdType chunkSize = 1 << 16;
+    const vtkIdType chunks = (static_cast<vtkIdType>(order.size()) + chunkSize - 1) / chunkSize;
+    auto forEachKept = [&](vtkIdType chunk, auto&& visit)
     {
-      const ScreenKernel& s = kernels[k];
-      if (s.Skip == Kept)
+      const vtkIdType end = std::min(static_cast<vtkIdType>(order.size()), (chunk + 1) * chunkSize);
+      for (vtkIdType j = chunk * chunkSize; j < end; ++j)
       {
-        projected += forEachBand(s, [&offsets](int b) { ++offsets[b + 1]; });
+        if (kernels[order[j]].Skip == Kept)
+        {
+          visit(order[j]);
+        }
       }
-    }
-    this->Projected[list] = projected;
-    std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-    indices.resize(offsets[bands]);
-    std::vector<vtkIdType> fill(offsets.begin(), offsets.end() - 1);
-    for (vtkIdType k : order)
+    };
+    std::vector<vtkIdType> starts(static_cast<std::size_t>(chunks) * bands, 0);
+    std::vector<vtkIdType> projected(chunks, 0);
+    vtkSMPTools::For(0, chunks,
+      [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
+      {
+        for (vtkIdType c = chunkBegin; c < chunkEnd; ++c)
+        {
+          vtkIdType* count = starts.data() + c * bands;
+          forEachKept(c,
+            [&](vtkIdType k)
+            { projected[c] += forEachBand(kernels[k], [count](int b) { ++count[b]; }); });
+        }
+      });
+    this->Projected[list] = std::accumulate(projected.begin(), projected.end(), vtkIdType(0));
+    std::vector<vtkIdType>& offsets = this->Internal->Offsets[list];
+    offsets.assign(bands + 1, 0);
+    for (int b = 0; b < bands; ++b)
     {
-      const ScreenKernel& s = kernels[k];
-      if (s.Skip == Kept)
+      vtkIdType next = offsets[b];
+      for (vtkIdType c = 0; c < chunks; ++c)
       {
-        forEachBand(s, [&](int b) { indices[fill[b]++] = k; });
+        const vtkIdType count = starts[c * bands + b];
+        starts[c * bands + b] = next;
+        next += count;
       }
+      offsets[b + 1] = next;
     }
+    std::vector<BinnedKernel>& bin = this->Internal->Bins[list];
+    bin.resize(offsets[bands]);
+    vtkSMPTools::For(0, chunks,
+      [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
+      {
+        for (vtkIdType c = chunkBegin; c < chunkEnd; ++c)
+        {
+          vtkIdType* next = starts.data() + c * bands;
+          forEachKept(c,
+            [&](vtkIdType k)
+            {
+              const BinnedKernel binned{ kernels[k], layerOf(list, k) };
+              forEachBand(kernels[k], [&](int b) { bin[next[b]++] = binned; });
+            });
+        }
+      });
     this->Internal->Buffers[list].resize(pixels);
   }
 
@@ -514,6 +649,8 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
       {
         const int rowBegin = static_cast<int>(b) * BandHeight;
         const int rowEnd = std::min(rowBegin + BandHeight, height) - 1;
+        LayerCompositor compositor(
+          width, rowBegin, rowEnd, cutoffF, input.PeakOpacity, sceneDepths);
         const std::size_t first = static_cast<std::size_t>(rowBegin) * width;
         const std::size_t last = static_cast<std::size_t>(rowEnd + 1) * width;
         for (int list = 0; list < 4; ++list)
@@ -526,23 +663,27 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
           std::fill(buffer + first, buffer + last, glm::vec4(0.0f));
           const PixelLists::Band& band = pixelLists.Bands[list][b];
           const std::vector<vtkIdType>& offsets = this->Internal->Offsets[list];
-          const vtkIdType* bin = this->Internal->Indices[list].data();
+          const BinnedKernel* bin = this->Internal->Bins[list].data();
           const float* weights = list == DepthList ? nullptr : pixelLists.Weights[list].data();
-          if (band.Ascending)
+          for (const bool ascending : { true, false })
           {
-            for (vtkIdType k = offsets[b]; k < offsets[b + 1]; ++k)
+            if (ascending ? !band.Ascending : !band.Descending)
             {
-              CompositeKernel(kernels[bin[k]], rowBegin, rowEnd, width, cutoffF,
-                input.PeakOpacity, weights, true, sceneDepths, buffer);
+              continue;
             }
-          }
-          if (band.Descending)
-          {
-            for (vtkIdType k = offsets[b + 1]; k-- > offsets[b];)
+            const vtkIdType count = offsets[b + 1] - offsets[b];
+            vtkIdType layer = -1;
+            for (vtkIdType n = 0; n < count; ++n)
             {
-              CompositeKernel(kernels[bin[k]], rowBegin, rowEnd, width, cutoffF,
-                input.PeakOpacity, weights, false, sceneDepths, buffer);
+              const BinnedKernel& k = bin[ascending ? offsets[b] + n : offsets[b + 1] - 1 - n];
+              if (k.Layer != layer)
+              {
+                compositor.Flush(weights, ascending, buffer);
+                layer = k.Layer;
+              }
+              compositor.Add(k.Kernel);
             }
+            compositor.Flush(weights, ascending, buffer);
           }
         }
         for (std::size_t p = first; p < last; ++p)

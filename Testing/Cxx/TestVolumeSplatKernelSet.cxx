@@ -117,7 +117,9 @@ int main(int, char*[])
       static_cast<long long>(a->GetNumberOfKernels()));
     Check(a->GetNumberOfKernels() == 7 && b->GetNumberOfKernels() == 7, "seven kernels");
     Check(brightest > 0.2, "the kernels are visible");
-    Check(largest <= 1.0 / 255.0, "covariance and scale + rotation render identically");
+    // Identical up to one 8-bit step: the two float covariances differ in their last bits, which
+    // may move a pixel across a rounding boundary.
+    Check(largest <= 1.5 / 255.0, "covariance and scale + rotation render identically");
   }
 
   // Invalid and degenerate kernels.
