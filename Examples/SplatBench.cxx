@@ -165,6 +165,14 @@ std::vector<long long> ParseCounts(
   return values;
 }
 
+// The handler of an option taking a whole number from `low` to `high` into `target`.
+template <typename T>
+splatexample::OptionHandler CountInto(T& target, long long low, long long high)
+{
+  return [&target, low, high](const std::string& name, const std::string& value)
+  { target = static_cast<T>(ParseCount(name, value, low, high)); };
+}
+
 Options ParseCommandLine(int argc, char* argv[])
 {
   Options options;
@@ -176,15 +184,9 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--points",
       [&](const std::string& name, const std::string& value)
       { options.Points = ParseCounts(name, value, 1, 100000000); } },
-    { "--kernels",
-      [&](const std::string& name, const std::string& value)
-      { options.Kernels = ParseCount(name, value, 1, 100000000); } },
-    { "--grid",
-      [&](const std::string& name, const std::string& value)
-      { options.Grid = ParseCount(name, value, 8, 1024); } },
-    { "--mri-shrink",
-      [&](const std::string& name, const std::string& value)
-      { options.MriShrink = static_cast<int>(ParseCount(name, value, 1, 16)); } },
+    { "--kernels", CountInto(options.Kernels, 1, 100000000) },
+    { "--grid", CountInto(options.Grid, 8, 1024) },
+    { "--mri-shrink", CountInto(options.MriShrink, 1, 16) },
     { "--sizes",
       [&](const std::string& name, const std::string& value)
       { options.Sizes = ParseCounts(name, value, 1, 16384); } },
@@ -198,12 +200,8 @@ Options ParseCommandLine(int argc, char* argv[])
         options.Backends = SplitList(name, value, { "cpu", "opengl" });
         options.VolumeBackends = options.Backends;
       } },
-    { "--frames",
-      [&](const std::string& name, const std::string& value)
-      { options.Frames = static_cast<int>(ParseCount(name, value, 1, 100000)); } },
-    { "--budget",
-      [&](const std::string& name, const std::string& value)
-      { options.Budget = static_cast<double>(ParseCount(name, value, 0, 86400)); } },
+    { "--frames", CountInto(options.Frames, 1, 100000) },
+    { "--budget", CountInto(options.Budget, 0, 86400) },
     { "--output", [&](const std::string&, const std::string& value) { options.Output = value; } },
     { "--image-dir",
       [&](const std::string&, const std::string& value) { options.ImageDir = value; } },
