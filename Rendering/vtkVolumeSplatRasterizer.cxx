@@ -89,6 +89,15 @@ namespace
 using ScreenKernel = vtkVolumeSplatRasterizer::ScreenKernel;
 using PixelLists = vtkVolumeSplatRasterizer::PixelLists;
 
+// Where GCC can dispatch on the running CPU (ifunc, x86-64 glibc), the pixel loop is also built
+// for AVX2 and FMA: twice the lanes of the SSE2 baseline, and the exponential's polynomial in
+// fused steps.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define SPLAT_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define SPLAT_VECTOR_CLONES
+#endif
+
 // Composites the kernels of one list into one band of its buffer, front to back, layer by layer.
 // A layer is a sheet of the grid for image data (kernels side by side at one index along the
 // list's axis, whose order within the sheet is arbitrary) and a single kernel otherwise. A
@@ -124,7 +133,7 @@ public:
   }
 
   /// Adds kernel s to the current layer.
-  void Add(const ScreenKernel& s)
+  SPLAT_VECTOR_CLONES void Add(const ScreenKernel& s)
   {
     const int y0 = std::max(s.Y0, this->RowBegin);
     const int y1 = std::min(s.Y1, this->RowEnd);
@@ -210,7 +219,7 @@ private:
   bool PeakOpacity;
   // Band rows are padded by a group of lanes, which the last group of a kernel at the right
   // edge may reach (adding zeros).
-  static constexpr int Lanes = 4;
+  static constexpr int Lanes = 8;
   int Stride;
   // Per band pixel: the opaque scene's eye depth (infinite where there is none).
   std::vector<float> SceneDepths;
