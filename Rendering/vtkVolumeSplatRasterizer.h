@@ -22,11 +22,22 @@
  *
  * A frame has four steps: per-pixel list weights; setup of every kernel, parallel over kernels
  * (footprint, bounding box, skip reasons); binning into 16-row bands in list order, for each list
- * some pixel needs, keeping only the kernels that overlap the band's pixels of that list; and
- * compositing, parallel over bands. A band's pixels see their kernels in list order whatever the
- * number of threads, so the image does not depend on it. Pixels stop integrating once their
- * accumulated opacity reaches 1 - 1/512 (early ray termination) or the kernel's center lies
- * behind the opaque scene's depth.
+ * some pixel needs, keeping only the kernels that overlap the band's pixels of that list (in
+ * parallel over chunks of the list, into copies of the kernels that the compositing reads in
+ * sequence); and compositing, parallel over bands. A band's pixels see their kernels in list
+ * order whatever the number of threads, so the image does not depend on it.
+ *
+ * Compositing goes layer by layer: for image data a layer is one sheet of the grid along the
+ * list's axis (kernels side by side, whose order within the sheet is arbitrary), otherwise one
+ * kernel. A layer's footprints are summed per pixel as optical depth and optical-depth-weighted
+ * color, and the layer goes under the pixel once with opacity 1 - exp(-sum): the transmittance
+ * of compositing its kernels one by one, the colors weighted by each kernel's share of the
+ * optical depth whatever their order, and one exponential per pixel and layer. Footprints are
+ * evaluated over whole groups of 8 columns of their box with the cutoff ellipse as a mask, so
+ * that the loop vectorizes (splat::NegativeExponential; an AVX2/FMA clone where GCC dispatches on
+ * the CPU). Pixels stop integrating once their accumulated opacity reaches 1 - 1/512 (early ray
+ * termination), and a kernel adds nothing to pixels where its center lies behind the opaque
+ * scene's depth.
  *
  * Kernels are not validated here: the caller passes finite data only.
  *
