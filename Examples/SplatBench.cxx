@@ -263,21 +263,6 @@ bool Chosen(const std::vector<std::string>& list, const std::string& name)
   return std::find(list.begin(), list.end(), name) != list.end();
 }
 
-// The backends of our mappers among `chosen` (from --backends), CPU first.
-std::vector<int> SplatBackends(const std::vector<std::string>& chosen)
-{
-  std::vector<int> backends;
-  for (int backend : { vtkSplatBackend::CPU, vtkSplatBackend::OPENGL })
-  {
-    if (Chosen(chosen,
-          vtksys::SystemTools::LowerCase(vtkSplatBackend::GetBackendAsString(backend))))
-    {
-      backends.push_back(backend);
-    }
-  }
-  return backends;
-}
-
 // Cases per size of a surface scene, in this order, for the mappers and backends chosen with
 // --mappers and --backends: vtkSurfaceSplatMapper's settings on each backend, then the peer.
 std::vector<MapperKind> Kinds(const Options& options)
@@ -285,7 +270,7 @@ std::vector<MapperKind> Kinds(const Options& options)
   std::vector<MapperKind> kinds;
   if (Chosen(options.Mappers, "splat"))
   {
-    for (int backend : SplatBackends(options.Backends))
+    for (int backend : splatexample::ChosenSplatBackends(options.Backends))
     {
       const std::string name = vtkSplatBackend::GetBackendAsString(backend);
       const MapperKind splat{ "splat", "vtkSurfaceSplatMapper", name, "default", false, false,
@@ -319,7 +304,7 @@ std::vector<MapperKind> VolumeKinds(const Options& options)
   std::vector<MapperKind> kinds;
   if (Chosen(options.Mappers, "splat"))
   {
-    for (int backend : SplatBackends(options.VolumeBackends))
+    for (int backend : splatexample::ChosenSplatBackends(options.VolumeBackends))
     {
       for (int mode : splatexample::OrderingModes())
       {

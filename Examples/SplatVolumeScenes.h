@@ -56,6 +56,23 @@ namespace splatexample
 //------------------------------------------------------------------------------------------------
 // Mappers.
 
+/// The splat mappers' backends named in `names` ("cpu", "opengl", as --backends lists them),
+/// CPU first.
+inline std::vector<int> ChosenSplatBackends(const std::vector<std::string>& names)
+{
+  std::vector<int> backends;
+  for (int backend : { vtkSplatBackend::CPU, vtkSplatBackend::OPENGL })
+  {
+    const std::string name =
+      vtksys::SystemTools::LowerCase(vtkSplatBackend::GetBackendAsString(backend));
+    if (std::find(names.begin(), names.end(), name) != names.end())
+    {
+      backends.push_back(backend);
+    }
+  }
+  return backends;
+}
+
 /// "blended", "clipped", "single-axis", "depth-sorted": vtkVolumeSplatMapper's ordering modes.
 inline const char* OrderingModeName(int mode)
 {
