@@ -86,16 +86,16 @@ splats_per_s is kernels per second. The ray casters (setting "ray cast", one ray
 sample every voxel spacing along it) draw the MRI's voxels and, for gaussians, the mixture
 resampled onto a --grid^3 RGBA grid over the ball's cube (points: the grid's voxels; the
 resampling is not timed; vtkFixedPointVolumeRayCastMapper only: VTK 9.1's
-vtkGPUVolumeRayCastMapper draws that grid nearly transparent). For volumes the counts are: rendered = kernels projected (a kernel
-counts once per list that splats it), frustum_culled, backface_culled empty, negligible =
-kernels of zero opacity (not in the lists), skipped = invalid kernels plus those reaching the
-near plane; the volume data is made once per scene, so bytes_per_splat is the mapper's memory
-(kernel lists, buffers) per kernel. Volume cases time at most 3 frames, the volume marked
-modified before each.
+vtkGPUVolumeRayCastMapper draws that grid nearly transparent). For volumes the counts are:
+rendered = kernels projected (a kernel counts once per list that splats it), frustum_culled,
+backface_culled empty, negligible = kernels of zero opacity (not in the lists), skipped =
+invalid kernels plus those reaching the near plane; the volume data is made once per scene,
+so bytes_per_splat is the mapper's memory (kernel lists, buffers) per kernel. Volume cases time
+at most 3 frames, the volume marked modified before each.
 peer_ratio is the peer's ms_per_frame at the same scene, points and size divided by the row's
-(above 1: faster than the peer): vtkPointGaussianMapper for surfaces, vtkFixedPointVolumeRay-
-CastMapper for volumes. drawn_by is the backend that drew the splat mappers' last frame
-(GetLastBackend; an OpenGL request can end up on the CPU).
+(above 1: faster than the peer): vtkPointGaussianMapper for surfaces,
+vtkFixedPointVolumeRayCastMapper for volumes. drawn_by is the backend that drew the splat
+mappers' last frame (GetLastBackend; an OpenGL request can end up on the CPU).
 bytes_per_splat is the resident memory the case added (its data, mapper and frames) per point:
 the current resident set size (/proc/self/statm) after the case's frames minus the one before
 its data was built, divided by the number of points. A one-line summary per case goes to stderr.
@@ -632,7 +632,8 @@ std::string CsvRow(const std::string& scene, long long size, const CaseResult& r
 std::string Summary(const std::string& scene, long long size, const CaseResult& r)
 {
   const MapperKind& kind = *r.Kind;
-  const bool volume = kind.Class != "vtkSurfaceSplatMapper" && kind.Class != "vtkPointGaussianMapper";
+  const bool volume =
+    kind.Class != "vtkSurfaceSplatMapper" && kind.Class != "vtkPointGaussianMapper";
   std::ostringstream summary;
   summary << "splat_bench: " << scene << " " << r.Points << (volume ? " kernels " : " points ")
           << size << "x" << size << " " << kind.Class << " " << kind.Backend << " "

@@ -495,7 +495,8 @@ std::vector<Case> VolumeCases(const std::vector<std::string>& backends)
       Case c{ mapper, gpu ? "OpenGL" : "CPU", mapper,
         fraction == 1.0 ? "sample=1 voxel" : "sample=" + Fixed(fraction, 2) + " voxel",
         gpu ? 0 : allThreads };
-      c.MakeVolume = [gpu, fraction](const VolumeInputs& in) -> vtkSmartPointer<vtkAbstractVolumeMapper>
+      c.MakeVolume =
+        [gpu, fraction](const VolumeInputs& in) -> vtkSmartPointer<vtkAbstractVolumeMapper>
       {
         return splatexample::RayCaster(
           in.Grid, gpu, fraction * splatexample::SmallestSpacing(in.Grid));
@@ -1017,9 +1018,9 @@ std::string MarkdownTable(const std::vector<Row>& rows, const std::string& alter
   return md.str();
 }
 
-// The plot: RMSE against ms per frame (log scale), one chart per scene (two per row), one point series per
-// family of settings and backend, and the Pareto front as a line. A family's series share a
-// marker and a hue, dark on the CPU and light on OpenGL.
+// The plot: RMSE against ms per frame (log scale), one chart per scene (two per row), one point
+// series per family of settings and backend, and the Pareto front as a line. A family's series
+// share a marker and a hue, dark on the CPU and light on OpenGL.
 void WritePlot(const std::vector<std::string>& scenes, const std::vector<Row>& rows,
   const std::string& path)
 {

@@ -484,15 +484,19 @@ struct ResampledVolume
 inline ResampledVolume ResampleMixture(const GaussianMixture& mixture, int n)
 {
   const double h = 2.0 / (n - 1);
-  const double reach = 4.0;
+  // The grid indices along `axis` within 4 standard deviations of the kernel's center.
+  const auto reached = [h, n](const GaussianMixture::Kernel& k, int axis, int& low, int& high)
+  {
+    const double reach = 4.0 * k.Sigma[axis];
+    low = std::max(0, static_cast<int>(std::ceil((k.Center[axis] - reach + 1.0) / h)));
+    high = std::min(n - 1, static_cast<int>(std::floor((k.Center[axis] + reach + 1.0) / h)));
+  };
   // Each kernel is binned into the z-slices it reaches, so that slices fill in parallel.
   std::vector<std::vector<vtkIdType>> slices(n);
   for (std::size_t i = 0; i < mixture.Kernels.size(); ++i)
   {
-    const auto& k = mixture.Kernels[i];
-    const int low = std::max(0, static_cast<int>(std::ceil((k.Center[2] - reach * k.Sigma[2] + 1.0) / h)));
-    const int high =
-      std::min(n - 1, static_cast<int>(std::floor((k.Center[2] + reach * k.Sigma[2] + 1.0) / h)));
+    int low, high;
+    reached(mixture.Kernels[i], 2, low, high);
     for (int z = low; z <= high; ++z)
     {
       slices[z].push_back(static_cast<vtkIdType>(i));
@@ -521,9 +525,7 @@ inline ResampledVolume ResampleMixture(const GaussianMixture& mixture, int n)
           int low[2], high[2];
           for (int a = 0; a < 2; ++a)
           {
-            low[a] = std::max(0, static_cast<int>(std::ceil((k.Center[a] - reach * k.Sigma[a] + 1.0) / h)));
-            high[a] = std::min(
-              n - 1, static_cast<int>(std::floor((k.Center[a] + reach * k.Sigma[a] + 1.0) / h)));
+            reached(k, a, low[a], high[a]);
           }
           for (int y = low[1]; y <= high[1]; ++y)
           {
