@@ -10,6 +10,13 @@ Checks that
   defaults and, set through the proxy, read back from the VTK object (through their information
   properties and the object's getters), and whose render statistics (LastBackend included) are
   exposed; a missing property fails;
+- mappers/VolumeSplatMapper creates a vtkVolumeSplatMapper (a vtkAbstractVolumeMapper) whose
+  settings (OrderingMode, BlendThreshold, Cutoff, Backend, CovarianceArrayName, ScaleArrayName,
+  RotationArrayName, ColorArrayName, OpacityArrayName) have their defaults and round-trip the
+  same way, with their enumerations and ranges, and whose render statistics (LastBackend,
+  NumberOfKernels, NumberOfTransparentKernels, NumberOfInvalidKernels, NumberOfProjectedKernels,
+  NumberOfNearPlaneKernels, NumberOfFrustumCulledKernels, NumberOfSorts, NumberOfListBuilds,
+  LastRenderTimeInMilliseconds) are information-only properties;
 - filters/SurfelGenerator is in paraview.simple after LoadPlugin, runs on a Sphere source and
   produces points with normals and a radius array.
 Any failure exits non-zero (a missing plugin, class or proxy included).
@@ -156,6 +163,133 @@ def test_mapper(servermanager):
         check(got == 0, "%s is 0 before a render (got %s)" % (name, got))
 
 
+def check_domain_range(smproxy, name, domain_class, low, high):
+    """The property's range domain spans low..high."""
+    domain = smproxy.GetProperty(name).FindDomain(domain_class)
+    if check(domain is not None, "%s has a range domain" % name):
+        got = (domain.GetMinimum(0), domain.GetMaximum(0))
+        check(close(got[0], low) and close(got[1], high),
+              "%s ranges over %g..%g (got %g..%g)" % (name, low, high, got[0], got[1]))
+
+
+def test_volume_mapper(servermanager):
+    smproxy = servermanager.CreateProxy("mappers", "VolumeSplatMapper")
+    if not check(smproxy is not None, "mappers/VolumeSplatMapper proxy is created"):
+        return
+    check(smproxy.GetXMLName() == "VolumeSplatMapper", "volume proxy XML name")
+
+    vtk_object = smproxy.GetClientSideObject()
+    check(vtk_object is not None, "the volume proxy has a VTK object")
+    if vtk_object is not None:
+        check(vtk_object.GetClassName() == "vtkVolumeSplatMapper",
+              "VTK object class is vtkVolumeSplatMapper (got %s)" % vtk_object.GetClassName())
+        check(vtk_object.IsA("vtkAbstractVolumeMapper"),
+              "vtkVolumeSplatMapper is a vtkAbstractVolumeMapper")
+
+    mapper = servermanager._getPyProxy(smproxy)
+
+    settings = ["OrderingMode", "BlendThreshold", "Cutoff", "Backend", "CovarianceArrayName",
+                "ScaleArrayName", "RotationArrayName", "ColorArrayName", "OpacityArrayName"]
+    counts = ["NumberOfKernels", "NumberOfTransparentKernels", "NumberOfInvalidKernels",
+              "NumberOfProjectedKernels", "NumberOfNearPlaneKernels",
+              "NumberOfFrustumCulledKernels", "NumberOfSorts", "NumberOfListBuilds",
+              "LastRenderTimeInMilliseconds"]
+    statistics = counts + ["LastBackend"]
+    for name in settings:
+        prop = smproxy.GetProperty(name)
+        check(prop is not None and not prop.GetInformationOnly(),
+              "volume property %s exists and is settable" % name)
+        info = smproxy.GetProperty(name + "Info")
+        check(info is not None and info.GetInformationOnly(),
+              "volume information property %sInfo exists" % name)
+        check(prop is not None and prop.GetInformationProperty() is not None
+              and prop.GetInformationProperty() == info,
+              "volume %s reads back through %sInfo" % (name, name))
+    for name in statistics:
+        prop = smproxy.GetProperty(name)
+        check(prop is not None and prop.GetInformationOnly(),
+              "volume statistic %s is an information-only property" % name)
+
+    # Defaults, as the VTK object reports them after the XML's defaults are pushed.
+    smproxy.UpdateVTKObjects()
+    defaults = {"OrderingMode": 0, "BlendThreshold": 0.85, "Cutoff": 4.5, "Backend": 0,
+                "CovarianceArrayName": "Covariance", "ScaleArrayName": "Scale",
+                "RotationArrayName": "Rotation", "ColorArrayName": "Color",
+                "OpacityArrayName": "Opacity"}
+    for name, value in defaults.items():
+        got = info_value(smproxy, name + "Info")
+        if isinstance(value, str):
+            ok = got == value
+        else:
+            ok = close(got, value, 1e-9)
+        check(ok, "volume default %s is %r (got %r)" % (name, value, got))
+    check(mapper.OrderingMode == "Blended", "default OrderingMode reads as 'Blended' (got %r)"
+          % (mapper.OrderingMode,))
+    check(mapper.Backend == "Auto", "volume default Backend reads as 'Auto' (got %r)"
+          % (mapper.Backend,))
+
+    expected_entries = {
+        "OrderingMode": {"Blended": 0, "Clipped": 1, "SingleAxis": 2, "DepthSorted": 3},
+        "Backend": {"Auto": 0, "CPU": 1, "OpenGL": 2},
+    }
+    for name, expected in expected_entries.items():
+        enum = smproxy.GetProperty(name).FindDomain("vtkSMEnumerationDomain")
+        entries = {}
+        if check(enum is not None, "volume %s has an enumeration domain" % name):
+            entries = {enum.GetEntryText(i): enum.GetEntryValue(i)
+                       for i in range(enum.GetNumberOfEntries())}
+        check(entries == expected, "volume %s entries are %s (got %s)"
+              % (name, expected, entries))
+    check_domain_range(smproxy, "BlendThreshold", "vtkSMDoubleRangeDomain", 0.0, 0.99)
+    check_domain_range(smproxy, "Cutoff", "vtkSMDoubleRangeDomain", 0.001, 50.0)
+
+    # Round trips: proxy property -> VTK object -> information property.
+    values = {"BlendThreshold": 0.5, "Cutoff": 2.0}
+    strings = {"CovarianceArrayName": "Sigma", "ScaleArrayName": "Scales",
+               "RotationArrayName": "Quaternion", "ColorArrayName": "RGB",
+               "OpacityArrayName": "Alpha"}
+    for name, value in list(values.items()) + list(strings.items()):
+        setattr(mapper, name, value)
+    mapper.OrderingMode = "Clipped"
+    mapper.Backend = "OpenGL"
+    smproxy.UpdateVTKObjects()
+    values["OrderingMode"] = 1
+    values["Backend"] = 2
+    for name, value in values.items():
+        got = info_value(smproxy, name + "Info")
+        check(close(got, value), "volume %s round-trips (set %g, got %s)" % (name, value, got))
+    for name, value in strings.items():
+        got = info_value(smproxy, name + "Info")
+        check(got == value, "volume %s round-trips (set %r, got %r)" % (name, value, got))
+
+    # Every other enumeration value, and other numbers.
+    for mode, backend, threshold, cutoff in (("SingleAxis", "CPU", 0.99, 8.0),
+                                             ("DepthSorted", "Auto", 0.0, 4.5),
+                                             ("Blended", "CPU", 0.85, 0.001)):
+        mapper.OrderingMode = mode
+        mapper.Backend = backend
+        mapper.BlendThreshold = threshold
+        mapper.Cutoff = cutoff
+        smproxy.UpdateVTKObjects()
+        expected = {"OrderingMode": expected_entries["OrderingMode"][mode],
+                    "Backend": expected_entries["Backend"][backend],
+                    "BlendThreshold": threshold, "Cutoff": cutoff}
+        for name, value in expected.items():
+            got = info_value(smproxy, name + "Info")
+            check(close(got, value), "volume %s round-trips (set %g, got %s)"
+                  % (name, value, got))
+        check(mapper.OrderingMode == mode, "OrderingMode reads as %r (got %r)"
+              % (mode, mapper.OrderingMode))
+
+    # Render statistics are exposed before any render: the counts are 0 (the mapper has no
+    # input), LastBackend is a backend value (the mapper starts it at CPU, 1).
+    for name in counts:
+        got = info_value(smproxy, name)
+        check(got == 0, "volume %s is 0 before a render (got %s)" % (name, got))
+    got = info_value(smproxy, "LastBackend")
+    check(got in (0, 1), "volume LastBackend before a render is 0 or 1 (got %s)" % (got,))
+
+
 def test_surfel_generator(simple, servermanager):
     check("SurfelGenerator" in dir(simple) or "SurfelGenerator" in globals(),
           "SurfelGenerator is a paraview.simple function after LoadPlugin")
@@ -213,6 +347,7 @@ def main():
         return 1
 
     for test in (lambda: test_mapper(servermanager),
+                 lambda: test_volume_mapper(servermanager),
                  lambda: test_surfel_generator(simple, servermanager)):
         try:
             test()
