@@ -45,10 +45,12 @@ struct Material
 
 /**
  * Shades a surface point of color `color` at eye position `position` with unit normal `normal`
- * facing the viewer. With no lights (lighting off) the result is ambient + diffuse, as in VTK.
+ * facing the viewer. The direction to the eye is the view axis in a parallel projection, as in
+ * VTK. With no lights (lighting off) the result is ambient + diffuse, as in VTK.
  */
 inline glm::vec3 Shade(const std::vector<Light>& lights, const Material& material,
-  const glm::vec3& color, const glm::vec3& position, const glm::vec3& normal)
+  const glm::vec3& color, const glm::vec3& position, const glm::vec3& normal,
+  bool parallelProjection)
 {
   const glm::vec3 ambient =
     material.Ambient * (material.AmbientFromColor ? color : material.AmbientColor);
@@ -57,7 +59,8 @@ inline glm::vec3 Shade(const std::vector<Light>& lights, const Material& materia
   {
     return ambient + diffuseColor;
   }
-  const glm::vec3 toEye = glm::normalize(-position);
+  const glm::vec3 toEye =
+    parallelProjection ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::normalize(-position);
   glm::vec3 diffuse(0.0f), specular(0.0f);
   for (const Light& light : lights)
   {

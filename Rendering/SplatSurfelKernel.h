@@ -245,6 +245,12 @@ struct PlaneDepth
   }
 };
 
+/// Whether the projection eyeToClip is parallel (w does not depend on the eye position).
+inline bool IsParallelProjection(const glm::dmat4& eyeToClip)
+{
+  return eyeToClip[3][3] != 0.0;
+}
+
 /**
  * The view rays of a frame: pixel position (x, y) sees the eye-space points
  * Origin(x, y) + t Direction(x, y) at depth t (the distance in front of the camera along -z),
@@ -273,7 +279,7 @@ inline PixelRays MakePixelRays(const glm::dmat4& eyeToClip, const glm::dvec2& vi
   const glm::dvec3 b = glm::dvec3(clipToEye[1]) * (2.0 / viewportSize.y) / w;
   const glm::dvec3 c = glm::dvec3(corner) / w;
   PixelRays rays;
-  rays.Perspective = eyeToClip[3][3] == 0.0;
+  rays.Perspective = !IsParallelProjection(eyeToClip);
   if (rays.Perspective)
   {
     // Perspective: rays from the eye through E, scaled to unit depth.

@@ -41,7 +41,6 @@ enum SplatPass
   AttributePass = 1,
   SelectionPass = 2
 };
-constexpr int MaximumLights = 8; // as in vtkSurfaceSplatResolveFS.glsl
 
 using splat::SetNearest;
 }
@@ -380,7 +379,7 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::ResolveLayer(vtkOpenGLRenderWin
   const vtkSurfaceSplatRasterizer::Camera& camera, const std::vector<splat::Light>& lights,
   const splat::Material& material, vtkSurfaceSplatRasterizer* settings, int layer)
 {
-  vtkShaderProgram* program = splat::ReadyQuad(this->Resolve, window, vtkSurfaceSplatResolveFS);
+  vtkShaderProgram* program = splat::ReadyQuad(this->Resolve, window, splat::WithLighting(vtkSurfaceSplatResolveFS).c_str());
   if (!program)
   {
     return;
@@ -404,46 +403,7 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::ResolveLayer(vtkOpenGLRenderWin
   this->SetViewUniforms(program, camera);
   program->SetUniformi("edgeAntialiasing", settings->GetEdgeAntialiasing());
   program->SetUniformf("fullCoverage", settings->FullCoverageWeight());
-  const int count = std::min(static_cast<int>(lights.size()), MaximumLights);
-  if (static_cast<int>(lights.size()) > MaximumLights)
-  {
-    vtkGenericWarningMacro("Splats are lit by the first " << MaximumLights << " of "
-                                                          << lights.size() << " lights.");
-  }
-  float color[MaximumLights][3], direction[MaximumLights][3], position[MaximumLights][3],
-    attenuation[MaximumLights][3], coneCosine[MaximumLights], exponent[MaximumLights];
-  int positional[MaximumLights];
-  for (int i = 0; i < count; ++i)
-  {
-    const splat::Light& light = lights[i];
-    for (int c = 0; c < 3; ++c)
-    {
-      color[i][c] = light.Color[c];
-      direction[i][c] = light.Direction[c];
-      position[i][c] = light.Position[c];
-      attenuation[i][c] = light.Attenuation[c];
-    }
-    coneCosine[i] = light.ConeCosine;
-    exponent[i] = light.Exponent;
-    positional[i] = light.Positional;
-  }
-  program->SetUniformi("numberOfLights", count);
-  if (count > 0)
-  {
-    program->SetUniform3fv("lightColor", count, color);
-    program->SetUniform3fv("lightDirection", count, direction);
-    program->SetUniform1iv("lightPositional", count, positional);
-    program->SetUniform3fv("lightPosition", count, position);
-    program->SetUniform3fv("lightAttenuation", count, attenuation);
-    program->SetUniform1fv("lightConeCosine", count, coneCosine);
-    program->SetUniform1fv("lightExponent", count, exponent);
-  }
-  program->SetUniformf("ambient", material.Ambient);
-  program->SetUniform3f("ambientColor", glm::value_ptr(material.AmbientColor));
-  program->SetUniformi("ambientFromColor", material.AmbientFromColor);
-  program->SetUniformf("diffuse", material.Diffuse);
-  program->SetUniform3f("specular", glm::value_ptr(material.Specular));
-  program->SetUniformf("specularPower", material.SpecularPower);
+  splat::SetLightingUniforms(program, lights, material, camera.EyeToClip);
 
   vtkTextureObject* inputs[3] = { this->WeightedColor, this->WeightedNormal, this->WeightedDepth };
   const char* names[3] = { "weightedColor", "weightedNormal", "weightedDepth" };

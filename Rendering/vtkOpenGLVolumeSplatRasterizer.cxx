@@ -139,6 +139,8 @@ struct vtkOpenGLVolumeSplatRasterizer::Internals
   vtkMTimeType Version = 0;
   vtkMTimeType KernelTextureVersion = 0; // the upload the kernel texture refers to
   int KernelStride = 2;
+  bool SharedCovariance = true;
+  bool Shaded = false;
   GLsizei Count = 0;
   // What the shaders need of the kernels besides the buffers.
   Rasterizer::Kernels Input;
@@ -235,7 +237,8 @@ void vtkOpenGLVolumeSplatRasterizer::SetKernels(
     internal.Positions[i] = glm::dvec3(p[0], p[1], p[2]);
   }
   internal.Shift = splat::BoundsCenter(kernels.Positions, n);
-  internal.KernelStride = kernels.Covariances ? 4 : 2;
+  const int normalTexel = kernels.Covariances ? 4 : 2;
+  internal.KernelStride = normalTexel + (kernels.Normals ? 1 : 0);
   const std::size_t stride = 4 * internal.KernelStride;
   // At least one texel: an empty buffer cannot back a texture.
   std::vector<float> data(std::max<std::size_t>(stride * n, 4), 0.0f);
@@ -252,6 +255,10 @@ void vtkOpenGLVolumeSplatRasterizer::SetKernels(
     {
       std::copy_n(kernels.Covariances + 6 * i, 6, d + 8);
     }
+    if (kernels.Normals)
+    {
+      std::copy_n(kernels.Normals + 3 * i, 3, d + 4 * normalTexel);
+    }
   }
   internal.KernelBuffer->Upload(data, vtkOpenGLBufferObject::TextureBuffer);
   internal.Input = kernels;
@@ -260,6 +267,9 @@ void vtkOpenGLVolumeSplatRasterizer::SetKernels(
   internal.Input.Colors = nullptr;
   internal.Input.Strengths = nullptr;
   internal.Input.GridIds = nullptr;
+  internal.SharedCovariance = kernels.Covariances == nullptr;
+  internal.Shaded = kernels.Normals != nullptr;
+  internal.Input.Normals = nullptr;
   internal.Count = static_cast<GLsizei>(n);
   internal.Version = version;
   internal.OrderVersions.fill(0);
@@ -395,7 +405,7 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
 
   // 3. Each list into its own buffer, front to back in each direction some pixel needs.
   vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
-    vtkVolumeSplatVS, vtkVolumeSplatFS, "");
+    splat::WithLighting(vtkVolumeSplatVS).c_str(), vtkVolumeSplatFS, "");
   if (!program || !program->GetCompiled())
   {
     vtkErrorMacro("The volume splatting shaders did not compile.");
@@ -423,9 +433,18 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
   program->SetUniformf("compensation", static_cast<float>(splat::TruncationCompensation(cutoff)));
   program->SetUniformi("perspective", rays.Perspective ? 1 : 0);
   program->SetUniformi("peakOpacity", internal.Input.PeakOpacity ? 1 : 0);
-  program->SetUniformi("sharedCovariance", internal.KernelStride == 2 ? 1 : 0);
+  program->SetUniformi("sharedCovariance", internal.SharedCovariance ? 1 : 0);
   program->SetUniformMatrix3x3(
     "sharedEyeCovariance", const_cast<float*>(glm::value_ptr(sharedEyeCovariance)));
+  program->SetUniformi("shaded", internal.Shaded ? 1 : 0);
+  if (internal.Shaded)
+  {
+    glm::mat3 normalToEye(glm::transpose(glm::inverse(linear)));
+    program->SetUniformMatrix3x3("normalToEye", glm::value_ptr(normalToEye));
+    program->SetUniformi("twoSidedLighting", settings->GetTwoSidedLighting() ? 1 : 0);
+    splat::SetLightingUniforms(
+      program, settings->GetLights(), settings->GetMaterial(), camera.EyeToClip);
+  }
   program->SetUniformi("kernelStride", internal.KernelStride);
   program->SetUniformi("count", internal.Count);
   internal.KernelTexture->Activate();

@@ -13,8 +13,6 @@
 #include "vtkHardwareSelector.h"
 #include "vtkInformation.h"
 #include "vtkInformationObjectBaseVectorKey.h"
-#include "vtkLight.h"
-#include "vtkLightCollection.h"
 #include "vtkMath.h"
 #include "SplatVTKConversions.h"
 #include "vtkMatrix4x4.h"
@@ -80,52 +78,6 @@ vtkSurfaceSplatRasterizer::Camera ViewOf(vtkRenderer* ren, vtkActor* actor)
     ToGlm(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1.0, 1.0));
   view.Viewport = glm::ivec2(width, height);
   return view;
-}
-
-// The renderer's lights in eye coordinates, as VTK's OpenGL2 polydata shader sees them.
-std::vector<splat::Light> EyeLights(vtkRenderer* ren, const glm::dmat4& worldToEye)
-{
-  std::vector<splat::Light> lights;
-  vtkLightCollection* collection = ren->GetLights();
-  vtkCollectionSimpleIterator it;
-  collection->InitTraversal(it);
-  const glm::dmat3 rotation(worldToEye);
-  while (vtkLight* light = collection->GetNextLight(it))
-  {
-    if (!light->GetSwitch() || light->GetIntensity() <= 0.0)
-    {
-      continue;
-    }
-    splat::Light l;
-    const double* color = light->GetDiffuseColor();
-    l.Color = glm::vec3(glm::dvec3(color[0], color[1], color[2]) * light->GetIntensity());
-    double position[3], focalPoint[3];
-    light->GetTransformedPosition(position);
-    light->GetTransformedFocalPoint(focalPoint);
-    const glm::dvec3 p(position[0], position[1], position[2]);
-    const glm::dvec3 f(focalPoint[0], focalPoint[1], focalPoint[2]);
-    const glm::dvec3 direction = f - p;
-    if (!(glm::length(direction) > 0.0))
-    {
-      continue;
-    }
-    l.Direction = glm::vec3(glm::normalize(rotation * direction));
-    if (light->GetPositional())
-    {
-      l.Positional = true;
-      l.Position = glm::vec3(glm::dvec3(worldToEye * glm::dvec4(p, 1.0)));
-      const double* a = light->GetAttenuationValues();
-      l.Attenuation = glm::vec3(a[0], a[1], a[2]);
-      if (light->GetConeAngle() < 90.0)
-      {
-        l.ConeCosine =
-          static_cast<float>(std::cos(vtkMath::RadiansFromDegrees(light->GetConeAngle())));
-        l.Exponent = static_cast<float>(light->GetExponent());
-      }
-    }
-    lights.push_back(l);
-  }
-  return lights;
 }
 
 splat::Material MaterialOf(vtkProperty* property, bool colorsFromScalars)
@@ -510,7 +462,7 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
 
   this->LastBackend = vtkSplatBackend::Resolve(this->Backend, ren->GetRenderWindow());
   const std::vector<splat::Light> lights =
-    property->GetLighting() ? EyeLights(ren, worldToEye) : std::vector<splat::Light>();
+    property->GetLighting() ? splat::EyeLights(ren, worldToEye) : std::vector<splat::Light>();
   const splat::Material material = MaterialOf(property, this->Surfels->ColorsFromScalars);
   // Translucent splats behind opaque geometry drawn before them must be dropped fragment by
   // fragment, not only where the nearest one is hidden: they need the scene's depth.

@@ -192,7 +192,9 @@ glm::vec4 vtkSurfaceSplatRasterizer::ShadeFragment(const Fragment& f, int x, int
   normal = length > 0.0f ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
   const glm::vec3 color = glm::vec3(f.Color[0], f.Color[1], f.Color[2]) / f.Weight;
   const glm::vec3 shaded = glm::clamp(
-    splat::Shade(*frame.Lights, *frame.Surface, color, position, normal), 0.0f, 1.0f);
+    splat::Shade(*frame.Lights, *frame.Surface, color, position, normal,
+                   splat::IsParallelProjection(frame.View.EyeToClip)),
+    0.0f, 1.0f);
   float alpha = f.Alpha / f.Weight;
   if (this->EdgeAntialiasing)
   {

@@ -42,6 +42,7 @@ struct vtkVolumeSplatMapper::KernelArrays
   std::vector<float> Covariances; // empty for image data (one shared covariance)
   std::vector<float> Colors;
   std::vector<float> Strengths;
+  std::vector<float> Normals; // shaded kernels only
   std::vector<vtkIdType> GridIds; // image data only
   vtkVolumeSplatRasterizer::Kernels View;
   vtkVolumeProperty* Property = nullptr; // the property they were built with (not dereferenced)
@@ -49,7 +50,7 @@ struct vtkVolumeSplatMapper::KernelArrays
 
   void Clear()
   {
-    for (auto* v : { &this->Covariances, &this->Colors, &this->Strengths })
+    for (auto* v : { &this->Covariances, &this->Colors, &this->Strengths, &this->Normals })
     {
       v->clear();
     }
@@ -67,6 +68,7 @@ struct vtkVolumeSplatMapper::KernelArrays
     this->View.Colors = this->Colors.data();
     this->View.Strengths = this->Strengths.data();
     this->View.GridIds = this->GridIds.empty() ? nullptr : this->GridIds.data();
+    this->View.Normals = this->Normals.empty() ? nullptr : this->Normals.data();
   }
 };
 
@@ -166,6 +168,54 @@ vtkDataArray* ArrayOf(vtkDataSet* input, const char* name, int components)
 bool IsFinite(const double* v, int n)
 {
   return std::all_of(v, v + n, [](double x) { return std::isfinite(x); });
+}
+
+// The volume property's lighting terms for component 0, as VTK's volume mappers apply them: the
+// ambient and diffuse terms scale the transfer function's color, the specular one is white.
+splat::Material MaterialOf(vtkVolumeProperty* property)
+{
+  splat::Material m;
+  m.Ambient = static_cast<float>(property->GetAmbient(0));
+  m.AmbientFromColor = true;
+  m.Diffuse = static_cast<float>(property->GetDiffuse(0));
+  m.Specular = glm::vec3(static_cast<float>(property->GetSpecular(0)));
+  m.SpecularPower = static_cast<float>(property->GetSpecularPower(0));
+  return m;
+}
+
+// The unit normal of the scalar field at voxel (x, y, z) in model coordinates: minus the
+// gradient by central differences (one-sided at the border, and where a neighbor is not
+// finite), through the inverse transpose of the index-to-model matrix; zero where the gradient
+// is. It points from high to low values, out of bright structures.
+glm::vec3 VoxelNormal(vtkDataArray* scalars, const int dims[3], int x, int y, int z,
+  const glm::dmat3& gradientToModel)
+{
+  const int index[3] = { x, y, z };
+  const vtkIdType center = x + static_cast<vtkIdType>(dims[0]) * (y + static_cast<vtkIdType>(dims[1]) * z);
+  const vtkIdType strides[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
+  const double s = scalars->GetComponent(center, 0);
+  glm::dvec3 gradient(0.0);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    auto valueAt = [&](int step, double& value)
+    {
+      const int i = index[axis] + step;
+      if (i < 0 || i >= dims[axis])
+      {
+        return false;
+      }
+      value = scalars->GetComponent(center + step * strides[axis], 0);
+      return std::isfinite(value);
+    };
+    double low = s, high = s;
+    const bool hasLow = valueAt(-1, low);
+    const bool hasHigh = valueAt(1, high);
+    const int span = (hasLow ? 1 : 0) + (hasHigh ? 1 : 0);
+    gradient[axis] = span > 0 ? ((hasHigh ? high : s) - (hasLow ? low : s)) / span : 0.0;
+  }
+  const glm::dvec3 normal = -(gradientToModel * gradient);
+  const double length = glm::length(normal);
+  return length > 0.0 && std::isfinite(length) ? glm::vec3(normal / length) : glm::vec3(0.0f);
 }
 }
 
@@ -358,6 +408,8 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
   }
   const glm::dvec3 origin(image->GetOrigin()[0], image->GetOrigin()[1], image->GetOrigin()[2]);
   const double voxelVolume = std::abs(glm::determinant(indexToModel));
+  const bool shaded = property->GetShade(0) != 0;
+  const glm::dmat3 gradientToModel = glm::transpose(glm::inverse(indexToModel));
 
   // Two passes over the k-slices in parallel: count the visible voxels, then fill, so that the
   // kernels stay in voxel-id order (the Z list) whatever the number of threads.
@@ -391,6 +443,7 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
   k.Colors.resize(3 * n);
   k.Strengths.resize(n);
   k.GridIds.resize(n);
+  k.Normals.resize(shaded ? 3 * n : 0);
   vtkSMPTools::For(0, nz,
     [&](vtkIdType begin, vtkIdType end)
     {
@@ -421,6 +474,12 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
             }
             k.Strengths[out] = static_cast<float>(tau * voxelVolume);
             k.GridIds[out] = id;
+            if (shaded)
+            {
+              const glm::vec3 normal = VoxelNormal(scalars, dims, static_cast<int>(x),
+                static_cast<int>(y), static_cast<int>(z), gradientToModel);
+              std::copy_n(&normal.x, 3, k.Normals.begin() + 3 * out);
+            }
             ++out;
           }
         }
@@ -458,6 +517,17 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
   vtkDataArray* colors = ArrayOf(input, this->ColorArrayName, 3);
   colors = colors ? colors : ArrayOf(input, this->ColorArrayName, 4);
   vtkDataArray* opacities = ArrayOf(input, this->OpacityArrayName, 1);
+  vtkDataArray* normals = nullptr;
+  if (property->GetShade(0))
+  {
+    normals = input->GetPointData()->GetNormals();
+    if (!normals || normals->GetNumberOfComponents() != 3)
+    {
+      normals = nullptr;
+      vtkWarningMacro("Shading a point set needs point normals (vtkPointData::SetNormals); the "
+                      "kernels are drawn unshaded.");
+    }
+  }
   int cellFlag = 0;
   vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, this->ScalarMode,
     this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
@@ -476,6 +546,7 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
   k.Colors.reserve(3 * n);
   k.Covariances.reserve(6 * n);
   k.Strengths.reserve(n);
+  k.Normals.reserve(normals ? 3 * n : 0);
   for (vtkIdType i = 0; i < n; ++i)
   {
     if (i % 65536 == 0)
@@ -555,6 +626,18 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
       k.Colors.push_back(static_cast<float>(std::min(std::max(rgb[c] * colorScale, 0.0), 1.0)));
     }
     k.Strengths.push_back(static_cast<float>(strength));
+    if (normals)
+    {
+      // Non-finite normals shade like zero ones: ambient only.
+      double normal[3];
+      normals->GetTuple(i, normal);
+      for (int c = 0; c < 3; ++c)
+      {
+        k.Normals.push_back(std::isfinite(normal[c]) && IsFinite(normal, 3)
+            ? static_cast<float>(normal[c])
+            : 0.0f);
+      }
+    }
   }
   this->UpdateProgress(1.0);
   k.View.PeakOpacity = opacities != nullptr;
@@ -596,6 +679,12 @@ void vtkVolumeSplatMapper::Render(vtkRenderer* ren, vtkVolume* volume)
   view.EyeToClip =
     ToGlm(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1.0, 1.0));
   view.Viewport = glm::ivec2(width, height);
+  if (this->Kernels->View.Normals)
+  {
+    const glm::dmat4 worldToEye = ToGlm(camera->GetModelViewTransformMatrix());
+    this->Rasterizer->SetLighting(
+      splat::EyeLights(ren, worldToEye), MaterialOf(property), ren->GetTwoSidedLighting() != 0);
+  }
 
   // The opaque geometry is drawn: its depth ends each pixel's integration.
   std::vector<float> sceneDepths;

@@ -37,7 +37,16 @@
  * its opacity 1 - exp(-optical depth) and its emission the color transfer function's color.
  * The same transfer functions thus give images comparable with vtkFixedPointVolumeRayCastMapper
  * (which classifies after interpolation where this mapper classifies voxels). Gradient opacity
- * and shading are not applied.
+ * is not applied.
+ *
+ * Shading: with the volume property's Shade on, each kernel's color is lit once per frame at its
+ * center (pre-shaded splats) with the renderer's lights and the property's Ambient, Diffuse,
+ * Specular and SpecularPower, in VTK's lighting model (SplatLighting.h): ambient and diffuse
+ * scale the transfer function's color, the specular term is white. The normal is minus the
+ * scalar gradient by central differences at the voxel for image data, and the point normals
+ * (vtkPointData::GetNormals) for point sets, which are drawn unshaded, with a warning, without
+ * them. A zero gradient gets the ambient term only; with the renderer's TwoSidedLighting (VTK's
+ * default) normals facing away from the eye are turned towards it, as VTK's volume mappers do.
  *
  * Each render leaves out what the frame does not need: kernels of zero opacity are not in the
  * lists (which are rebuilt when the input, the transfer functions or the array selection change,

@@ -255,6 +255,15 @@ void vtkVolumeSplatRasterizer::SetKernels(const Kernels& kernels)
 }
 
 //------------------------------------------------------------------------------
+void vtkVolumeSplatRasterizer::SetLighting(
+  const std::vector<splat::Light>& lights, const splat::Material& material, bool twoSided)
+{
+  this->Lights = lights;
+  this->Material = material;
+  this->TwoSidedLighting = twoSided;
+}
+
+//------------------------------------------------------------------------------
 bool vtkVolumeSplatRasterizer::GetListTraversed(int list) const
 {
   return list >= 0 && list <= DepthList && this->Traversed[list];
@@ -470,6 +479,8 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
   const double farDistance = splat::FarPlaneDistance(camera.EyeToClip);
   const double cutoff = this->Cutoff;
   const double compensation = splat::TruncationCompensation(cutoff);
+  // Normals go to eye coordinates by the inverse transpose.
+  const glm::mat3 normalToEye(glm::transpose(glm::inverse(linear)));
   vtkSMPTools::For(0, static_cast<vtkIdType>(input.Count),
     [&](vtkIdType begin, vtkIdType end)
     {
@@ -516,9 +527,15 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
         s.Amplitude = static_cast<float>(
           input.PeakOpacity ? strength : strength * footprint.Amplitude * compensation);
         s.Depth = static_cast<float>(-e.z);
+        glm::vec3 color(input.Colors[3 * i], input.Colors[3 * i + 1], input.Colors[3 * i + 2]);
+        if (input.Normals)
+        {
+          color = this->ShadeKernel(
+            color, glm::vec3(e), normalToEye, input.Normals + 3 * i, !rays.Perspective);
+        }
         for (int c = 0; c < 3; ++c)
         {
-          s.Color[c] = input.Colors[3 * i + c];
+          s.Color[c] = color[c];
         }
       }
     });
@@ -730,6 +747,22 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
 }
 
 //------------------------------------------------------------------------------
+glm::vec3 vtkVolumeSplatRasterizer::ShadeKernel(const glm::vec3& color, const glm::vec3& eye,
+  const glm::mat3& normalToEye, const float* modelNormal, bool parallelProjection) const
+{
+  glm::vec3 normal = normalToEye * glm::vec3(modelNormal[0], modelNormal[1], modelNormal[2]);
+  const float length = glm::length(normal);
+  normal = length > 0.0f ? normal / length : glm::vec3(0.0f);
+  if (this->TwoSidedLighting && glm::dot(normal, eye) > 0.0f)
+  {
+    normal = -normal;
+  }
+  return glm::clamp(
+    splat::Shade(this->Lights, this->Material, color, eye, normal, parallelProjection), 0.0f,
+    1.0f);
+}
+
+//------------------------------------------------------------------------------
 void vtkVolumeSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -737,6 +770,9 @@ void vtkVolumeSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BlendThreshold: " << this->BlendThreshold << "\n";
   os << indent << "Cutoff: " << this->Cutoff << "\n";
   os << indent << "Kernels: " << this->Input.Count << "\n";
+  os << indent << "Shaded: " << (this->Input.Normals != nullptr) << "\n";
+  os << indent << "Lights: " << this->Lights.size() << "\n";
+  os << indent << "TwoSidedLighting: " << this->TwoSidedLighting << "\n";
   for (int list = 0; list <= DepthList; ++list)
   {
     os << indent << "List " << list << ": traversed " << this->Traversed[list] << ", projected "

@@ -46,6 +46,7 @@
 #ifndef vtkVolumeSplatRasterizer_h
 #define vtkVolumeSplatRasterizer_h
 
+#include "SplatLighting.h"        // For splat::Light, splat::Material
 #include "SplatRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
@@ -121,6 +122,8 @@ public:
    * - GridIds and GridDimensions: for image data, each kernel's voxel id i + nx (j + ny k),
    *   ascending; the lists are then the grid's sheets and are not sorted. Null for point sets,
    *   whose lists are sorted by position.
+   * - Normals: for shading, a unit normal per kernel in model coordinates (zero where there is
+   *   none, which gets the ambient term only); null for unshaded kernels, which emit Colors.
    */
   struct Kernels
   {
@@ -134,6 +137,7 @@ public:
     glm::dmat3 ListFrame{ 1.0 };
     const vtkIdType* GridIds = nullptr;
     glm::ivec3 GridDimensions{ 0 };
+    const float* Normals = nullptr;
   };
 
   /**
@@ -141,6 +145,18 @@ public:
    * are rebuilt when a frame needs them.
    */
   void SetKernels(const Kernels& kernels);
+
+  /**
+   * The lighting of kernels with normals (SplatLighting.h): lights in eye coordinates, the
+   * material, and whether a normal facing away from the eye is turned towards it (two-sided
+   * lighting, as VTK's volume mappers do for gradients). Each kernel is shaded once per frame
+   * at its center (pre-shaded splats, as in Westover's splatting), in both backends.
+   */
+  void SetLighting(
+    const std::vector<splat::Light>& lights, const splat::Material& material, bool twoSided);
+  const std::vector<splat::Light>& GetLights() const { return this->Lights; }
+  const splat::Material& GetMaterial() const { return this->Material; }
+  bool GetTwoSidedLighting() const { return this->TwoSidedLighting; }
 
   /**
    * Window-space depth in [0, 1] of the opaque scene per pixel (row by row from the bottom);
@@ -201,6 +217,9 @@ protected:
   void BuildList(int list);
   /// The per-frame depth order of the kept kernels.
   void BuildDepthList();
+  /// The color of a kernel at eye position `eye` lit with its model normal (SetLighting).
+  glm::vec3 ShadeKernel(const glm::vec3& color, const glm::vec3& eye,
+    const glm::mat3& normalToEye, const float* modelNormal, bool parallelProjection) const;
 
   int OrderingMode = BLENDED;
   double BlendThreshold = 0.85;
@@ -214,6 +233,10 @@ protected:
   vtkIdType FrustumCulledCount = 0;
   vtkIdType SortCount = 0;
   vtkIdType ListBuildCount = 0;
+
+  std::vector<splat::Light> Lights;
+  splat::Material Material;
+  bool TwoSidedLighting = true;
 
   std::vector<float> SceneDepths;
   std::vector<float> Image;

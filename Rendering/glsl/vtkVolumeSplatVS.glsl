@@ -4,10 +4,12 @@
 // for the descending traversal of a list), four vertices (a triangle strip) covering the box of
 // its footprint's cutoff ellipse. The per-kernel setup mirrors vtkVolumeSplatRasterizer's step 2
 // and SplatVolumeKernel.h (CrossesNearPlane, ProjectVolumeKernel, MakeVolumeFootprint,
-// TruncationCompensation) and CoveredPixels (SplatSurfelKernel.h) line by line.
+// TruncationCompensation) and CoveredPixels (SplatSurfelKernel.h) line by line, and shades
+// kernels with normals as vtkVolumeSplatRasterizer::ShadeKernel does.
 
 // Per kernel, kernelStride texels: (position relative to the shift folded into modelToEye,
-// strength), (color, unused) and, without a shared covariance, (xx, xy, xz, yy), (yz, zz, -, -).
+// strength), (color, unused), without a shared covariance (xx, xy, xz, yy), (yz, zz, -, -), and
+// last, when shaded, (model normal, unused).
 uniform samplerBuffer kernels;
 uniform isamplerBuffer order;
 uniform int kernelStride;
@@ -25,6 +27,11 @@ uniform int perspective;
 uniform int peakOpacity;
 uniform int sharedCovariance;
 uniform mat3 sharedEyeCovariance;
+uniform int shaded;
+uniform mat3 normalToEye;
+uniform int twoSidedLighting;
+
+//VTK::SplatLighting::Dec
 
 flat out vec2 splatCenter;
 flat out vec3 splatConic; // 1/2 M^-1 as (xx, 2 xy, yy): beta = dx^2 xx + dx dy xy + dy^2 yy
@@ -100,6 +107,17 @@ void main()
     : strength * abs(determinant(J)) * InverseTwoPi / sqrt(detM) * compensation;
   splatDepth = -e.z;
   splatColor = texelFetch(kernels, kernelStride * k + 1).rgb;
+  if (shaded != 0)
+  {
+    vec3 normal = normalToEye * texelFetch(kernels, kernelStride * k + kernelStride - 1).xyz;
+    float normalLength = length(normal);
+    normal = normalLength > 0.0 ? normal / normalLength : vec3(0.0);
+    if (twoSidedLighting != 0 && dot(normal, e) > 0.0)
+    {
+      normal = -normal;
+    }
+    splatColor = clamp(shade(splatColor, e, normal), 0.0, 1.0);
+  }
 
   // The corner of this vertex, with half a pixel of margin around the box.
   vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;

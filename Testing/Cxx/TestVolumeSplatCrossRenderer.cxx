@@ -4,8 +4,11 @@
 //    against that image, with vtkFixedPointVolumeRayCastMapper's error on the same scene
 //    printed for comparison;
 // 2. the MRI head ch2.nii.gz (mricron-data) with one transfer function through both mappers at
-//    the same camera (skipped with 125 when the file is absent).
-// The RMSE bounds (MAX_BLOB_RMSE, MAX_MRI_RMSE) and their justification are in CMakeLists.txt.
+//    the same camera (skipped with 125 when the file is absent), unshaded and shaded (the volume
+//    property's default lighting terms, the renderer's headlight); shaded, the splats must also
+//    be closer to the shaded ray cast than the unshaded splats are.
+// The RMSE bounds (MAX_BLOB_RMSE, MAX_MRI_RMSE, MAX_MRI_SHADED_RMSE) and their justification are
+// in CMakeLists.txt.
 // Each mapper's render time is printed.
 #include "SplatVolumeTestUtilities.h"
 #include "vtkVolumeSplatMapper.h"
@@ -142,6 +145,23 @@ int main(int, char*[])
   if (!(error <= MAX_MRI_RMSE))
   {
     std::fprintf(stderr, "MRI RMSE %.5f above the bound %.5f\n", error, MAX_MRI_RMSE);
+    ++failures;
+  }
+
+  property->ShadeOn();
+  vtkNew<vtkVolumeSplatMapper> shadedSplat;
+  const Rendered shaded = Render(shadedSplat, head, property, place);
+  vtkNew<vtkFixedPointVolumeRayCastMapper> shadedRayCast;
+  const Rendered shadedReference = Render(shadedRayCast, head, property, place);
+  const double shadedError = splattest::RMSE(shaded.RGB, shadedReference.RGB);
+  const double unshadedError = splattest::RMSE(ours.RGB, shadedReference.RGB);
+  std::printf("MRI shaded RMSE splat vs fixed-point ray cast: %.5f (unshaded splats: %.5f); "
+              "splat %.1f ms, ray cast %.1f ms\n",
+    shadedError, unshadedError, shaded.Milliseconds, shadedReference.Milliseconds);
+  if (!(shadedError <= MAX_MRI_SHADED_RMSE) || !(shadedError < unshadedError))
+  {
+    std::fprintf(stderr, "MRI shaded RMSE %.5f above the bound %.5f or not below %.5f\n",
+      shadedError, MAX_MRI_SHADED_RMSE, unshadedError);
     ++failures;
   }
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
