@@ -30,6 +30,8 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <sstream>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkVolumeSplatMapper);
@@ -46,6 +48,7 @@ struct vtkVolumeSplatMapper::KernelArrays
   std::vector<vtkIdType> GridIds; // image data only
   vtkVolumeSplatRasterizer::Kernels View;
   vtkVolumeProperty* Property = nullptr; // the property they were built with (not dereferenced)
+  std::string Settings; // the mapper's settings they were built with (KernelSettings)
   vtkTimeStamp BuildTime;
 
   void Clear()
@@ -337,20 +340,38 @@ vtkIdType vtkVolumeSplatMapper::GetNumberOfListBuilds()
 }
 
 //------------------------------------------------------------------------------
+std::string vtkVolumeSplatMapper::KernelSettings()
+{
+  std::ostringstream settings;
+  for (const char* name : { this->CovarianceArrayName, this->ScaleArrayName,
+         this->RotationArrayName, this->ColorArrayName, this->OpacityArrayName, this->ArrayName })
+  {
+    settings << (name ? name : "") << '\n';
+  }
+  settings << this->ScalarMode << ' ' << this->ArrayAccessMode << ' ' << this->ArrayId;
+  return settings.str();
+}
+
+//------------------------------------------------------------------------------
 bool vtkVolumeSplatMapper::UpdateKernels(vtkVolumeProperty* property)
 {
   vtkDataSet* input = this->GetDataSetInput();
-  const vtkMTimeType changed =
-    std::max({ input->GetMTime(), this->GetMTime(), property->GetMTime() });
+  // Ordering, cutoff and backend do not change the kernels: their lists stay.
+  const vtkMTimeType changed = std::max(input->GetMTime(), property->GetMTime());
+  const std::string settings = this->KernelSettings();
   KernelArrays& k = *this->Kernels;
-  if (k.BuildTime.GetMTime() > changed && k.Property == property)
+  if (k.BuildTime.GetMTime() > changed && k.Property == property && k.Settings == settings)
   {
     return true;
   }
   k.Clear();
   this->NumberOfKernels = this->NumberOfTransparentKernels = this->NumberOfInvalidKernels = 0;
   bool ok = false;
-  if (auto* image = vtkImageData::SafeDownCast(input))
+  if (input->GetNumberOfPoints() == 0)
+  {
+    ok = true; // nothing to draw, and statistics of zero
+  }
+  else if (auto* image = vtkImageData::SafeDownCast(input))
   {
     ok = this->BuildImageKernels(image, property);
   }
@@ -371,6 +392,7 @@ bool vtkVolumeSplatMapper::UpdateKernels(vtkVolumeProperty* property)
   this->NumberOfKernels = static_cast<vtkIdType>(k.View.Count);
   this->Rasterizer->SetKernels(k.View);
   k.Property = property;
+  k.Settings = settings;
   k.BuildTime.Modified();
   if (this->NumberOfInvalidKernels > 0)
   {
@@ -664,8 +686,7 @@ void vtkVolumeSplatMapper::Render(vtkRenderer* ren, vtkVolume* volume)
   vtkDataSet* input = this->GetDataSetInput();
   vtkVolumeProperty* property = volume->GetProperty();
   // Hardware picking of volume splats is not implemented (in either backend).
-  if (!input || input->GetNumberOfPoints() == 0 || ren->GetSelector() || !property ||
-    !this->UpdateKernels(property))
+  if (!input || ren->GetSelector() || !property || !this->UpdateKernels(property))
   {
     return;
   }

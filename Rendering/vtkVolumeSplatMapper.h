@@ -81,6 +81,7 @@
 #include "vtkNew.h" // For vtkNew
 
 #include <memory> // For std::unique_ptr
+#include <string> // For KernelSettings
 
 class vtkImageData;
 class vtkOpenGLImageDepthCompositor;
@@ -151,7 +152,8 @@ public:
   ///@}
 
   /**
-   * The backend that drew the last render (vtkSplatBackend::CPU or OPENGL).
+   * The backend that drew the last render (vtkSplatBackend::CPU or OPENGL; AUTO, 0, before the
+   * first render).
    */
   vtkGetMacro(LastBackend, int);
 
@@ -232,6 +234,8 @@ protected:
    * false when the input cannot be drawn.
    */
   bool UpdateKernels(vtkVolumeProperty* property);
+  /// The mapper's settings the kernels depend on (array names and scalar selection), as text.
+  std::string KernelSettings();
   bool BuildImageKernels(vtkImageData* image, vtkVolumeProperty* property);
   bool BuildPointKernels(vtkPointSet* points, vtkVolumeProperty* property);
 
@@ -242,7 +246,7 @@ protected:
   int SelectBackend(vtkRenderer* ren);
 
   int Backend = 0;
-  int LastBackend = 1;
+  int LastBackend = 0; // no render yet
   char* CovarianceArrayName = nullptr;
   char* ScaleArrayName = nullptr;
   char* RotationArrayName = nullptr;

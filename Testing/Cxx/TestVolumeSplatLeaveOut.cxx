@@ -8,6 +8,7 @@
 // - the lists are rebuilt when the transfer function changes, and only then;
 // - point sets are sorted once per list they need.
 #include "SplatVolumeTestUtilities.h"
+#include "vtkSplatBackend.h"
 #include "vtkVolumeSplatMapper.h"
 
 #include <cstdio>
@@ -137,5 +138,26 @@ int main(int, char*[])
   window->Render();
   Check(pointMapper->GetNumberOfSorts() == 1 && pointMapper->GetNumberOfListBuilds() == 1,
     "a point set is sorted once for the one list it needs");
+
+  // Ordering, cutoff, blend threshold and backend leave the kernels and their lists alone; the
+  // scalar selection does not.
+  pointMapper->SetOrderingModeToClipped();
+  pointMapper->SetCutoff(3.0);
+  pointMapper->SetBlendThreshold(0.8);
+  pointMapper->SetBackend(vtkSplatBackend::CPU);
+  window->Render();
+  Check(pointMapper->GetNumberOfSorts() == 1 && pointMapper->GetNumberOfListBuilds() == 1,
+    "no re-sort after changing ordering, cutoff, blend threshold and backend");
+  pointMapper->SetScalarModeToUsePointFieldData();
+  pointMapper->SelectScalarArray("Scalar");
+  window->Render();
+  Check(pointMapper->GetNumberOfSorts() == 2 && pointMapper->GetNumberOfListBuilds() == 2,
+    "the kernels rebuilt and re-sorted after the scalar selection changed");
+
+  // An empty input draws nothing and reports nothing.
+  pointMapper->SetInputData(vtkNew<vtkPolyData>());
+  window->Render();
+  Check(pointMapper->GetNumberOfKernels() == 0 && pointMapper->GetNumberOfProjectedKernels() == 0,
+    "an empty input reports no kernels");
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
