@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// splat_render: renders a point cloud or a mesh (.ply, .vtp, .xyz, .off) as EWA surface splats
-// into a PNG and reports the frame time. Without a file it renders the project's demo scenes.
+// splat_render: renders a point cloud or a mesh (.ply, .vtp, .xyz, .off) as EWA surface splats,
+// or a volume (.nii, .nii.gz, .vti, .mhd, .mha) by EWA volume splatting, into a PNG and reports
+// the frame time. Without a file it renders the project's demo scenes.
 // Run `splat_render --help` for the options.
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
+#include "SplatVolumeScenes.h"
 #include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
@@ -16,6 +18,7 @@
 #include "vtkErrorCode.h"
 #include "vtkFloatArray.h"
 #include "vtkMath.h"
+#include "vtkMetaImageReader.h"
 #include "vtkNew.h"
 #include "vtkPLYReader.h"
 #include "vtkPointData.h"
@@ -26,6 +29,8 @@
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
 #include "vtkSmartPointer.h"
+#include "vtkVolume.h"
+#include "vtkXMLImageDataReader.h"
 #include "vtkXMLPolyDataReader.h"
 
 #include <vtksys/SystemTools.hxx>
@@ -36,6 +41,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -56,8 +62,12 @@ const char* const Usage = R"(Usage: splat_render [OPTIONS] [FILE]
 
 Renders FILE (.ply, .vtp, .xyz or .off; a mesh or a point cloud) as EWA surface splats
 (vtkSurfelGenerator + vtkSurfaceSplatMapper) into a PNG and prints the backend, the number of
-splats, the time per frame and the splats per second. Without FILE, renders the demo scenes
-(the Stanford bunny, or the CGAL armadillo when the bunny is absent, and a colored sphere).
+splats, the time per frame and the splats per second. A volume FILE (.nii, .nii.gz, .vti, .mhd
+or .mha: image data with point scalars) is drawn by vtkVolumeSplatMapper, one Gaussian kernel
+per voxel, through a transfer function over the scalar range (transparent below a fifth of
+it, then more opaque and from dark red to white towards the top), shaded unless --shade off.
+Without FILE, renders the demo scenes (the Stanford bunny, or the CGAL armadillo when the bunny
+is absent, a colored sphere, and the MRI head of Debian's mricron-data when present).
 
 .xyz files hold one point per line: "x y z" or "x y z nx ny nz"; lines starting with # are
 skipped. Points without normals get normals from their neighbors.
@@ -78,7 +88,11 @@ Options (a value follows as --name VALUE or --name=VALUE):
                           screen-space filter (default ewa, exact EWA; approximate is the
                           OpenGL backend's cheaper filter, the CPU draws EWA for it)
   --radius-scale F        vtkSurfelGenerator RadiusScale: splat radius / point spacing (default 1)
-  --cutoff F              vtkSurfaceSplatMapper Cutoff on the kernel exponent (default 1)
+  --cutoff F              Cutoff on the kernel exponent (default: the mapper's, 1 for surface
+                          splats, 4.5 for volumes)
+  --ordering blended|clipped|single-axis|depth-sorted
+                          volumes: vtkVolumeSplatMapper's visibility ordering (default blended)
+  --shade on|off          volumes: light the kernels by the scalar gradient (default on)
   --color r,g,b           splat color in [0,1], replaces the data's own colors
   --background r,g,b      background color in [0,1] (default 0.1,0.1,0.15)
   --frames N              frames timed after one warm-up frame (default 5)
@@ -101,7 +115,9 @@ struct Options
   std::optional<Triple> ViewUp;
   std::optional<Triple> ViewDirection;
   double RadiusScale = 1.0;
-  double Cutoff = 1.0;
+  std::optional<double> Cutoff;
+  int Ordering = vtkVolumeSplatMapper::BLENDED;
+  bool Shade = true;
   int Backend = vtkSplatBackend::AUTO;
   int FilterMode = vtkSurfaceSplatMapper::EWA;
   std::optional<Triple> Color;
@@ -267,6 +283,18 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--cutoff",
       [&](const std::string& name, const std::string& value)
       { options.Cutoff = ParsePositive(name, value); } },
+    { "--ordering",
+      [&](const std::string& name, const std::string& value)
+      {
+        options.Ordering = ParseChoice(name, value,
+          { { "blended", vtkVolumeSplatMapper::BLENDED },
+            { "clipped", vtkVolumeSplatMapper::CLIPPED },
+            { "single-axis", vtkVolumeSplatMapper::SINGLE_AXIS },
+            { "depth-sorted", vtkVolumeSplatMapper::DEPTH_SORTED } });
+      } },
+    { "--shade",
+      [&](const std::string& name, const std::string& value)
+      { options.Shade = ParseChoice(name, value, { { "on", 1 }, { "off", 0 } }) != 0; } },
     { "--color",
       [&](const std::string& name, const std::string& value)
       { options.Color = ParseColor(name, value); } },
@@ -501,7 +529,8 @@ vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
   else
   {
     throw std::runtime_error(
-      "'" + path + "': unknown file type; splat_render reads .ply, .vtp, .xyz and .off");
+      "'" + path + "': unknown file type; splat_render reads .ply, .vtp, .xyz and .off (surfaces) "
+      "and .nii, .nii.gz, .vti, .mhd and .mha (volumes)");
   }
   if (data->GetNumberOfPoints() == 0)
   {
@@ -523,7 +552,10 @@ vtkSmartPointer<vtkSurfaceSplatMapper> SplatMapper(vtkPolyData* data, const Opti
   }
   auto mapper = vtkSmartPointer<vtkSurfaceSplatMapper>::New();
   mapper->SetInputConnection(surfels->GetOutputPort());
-  mapper->SetCutoff(options.Cutoff);
+  if (options.Cutoff)
+  {
+    mapper->SetCutoff(*options.Cutoff);
+  }
   mapper->SetBackend(options.Backend);
   mapper->SetFilterMode(options.FilterMode);
   return mapper;
@@ -561,6 +593,31 @@ vtkSmartPointer<vtkRenderWindow> MakeWindow(const Options& options)
   return window;
 }
 
+// The median wall-clock and mapper milliseconds of options.Frames frames (to the GPU's
+// completion: OpenGL runs asynchronously); `mapperMs` reads the mapper's own time of a frame.
+std::pair<double, double> TimeFrames(
+  vtkRenderWindow* window, const Options& options, const std::function<double()>& mapperMs)
+{
+  std::vector<double> frame, mapper;
+  for (int i = 0; i < options.Frames; ++i)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    window->WaitForCompletion();
+    frame.push_back(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    mapper.push_back(mapperMs());
+  }
+  return { splatexample::Median(frame), splatexample::Median(mapper) };
+}
+
+// Prints the backend that drew (AUTO resolves per window) with the OpenGL renderer behind it.
+void PrintBackend(vtkRenderWindow* window, int backend)
+{
+  std::cout << "  backend:       " << vtkSplatBackend::GetBackendAsString(backend)
+            << " (OpenGL renderer: " << splatexample::OpenGLRenderer(window) << ")\n";
+}
+
 // Renders one scene: a warm-up frame, then options.Frames timed frames; prints the figures and
 // writes the last frame to `png`.
 void RenderScene(vtkRenderWindow* window, vtkSurfaceSplatMapper* mapper, const Options& options,
@@ -592,23 +649,11 @@ void RenderScene(vtkRenderWindow* window, vtkSurfaceSplatMapper* mapper, const O
   {
     throw std::runtime_error("nothing to draw: no point has a valid position, normal and radius");
   }
-  std::vector<double> frameMs, mapperMs;
-  for (int frame = 0; frame < options.Frames; ++frame)
-  {
-    const auto start = std::chrono::steady_clock::now();
-    window->Render();
-    // OpenGL runs asynchronously: the frame is done when the GL queue is.
-    window->WaitForCompletion();
-    frameMs.push_back(
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-    mapperMs.push_back(mapper->GetLastRenderTimeInMilliseconds());
-  }
-  const double ms = splatexample::Median(frameMs);
+  const auto [ms, mapperMs] =
+    TimeFrames(window, options, [mapper] { return mapper->GetLastRenderTimeInMilliseconds(); });
   const vtkIdType splats = mapper->GetNumberOfSplats();
-  // The backend that drew (AUTO resolves per window), and the OpenGL renderer behind it.
-  std::cout << "  backend:       " << vtkSplatBackend::GetBackendAsString(mapper->GetLastBackend())
-            << " (OpenGL renderer: " << splatexample::OpenGLRenderer(window) << ")\n"
-            << "  splats:        " << splats << " (";
+  PrintBackend(window, mapper->GetLastBackend());
+  std::cout << "  splats:        " << splats << " (";
   // The OpenGL backend culls in its vertex shader without counting (the counts are -1).
   if (mapper->GetNumberOfRenderedSplats() >= 0)
   {
@@ -618,8 +663,7 @@ void RenderScene(vtkRenderWindow* window, vtkSurfaceSplatMapper* mapper, const O
   std::cout << mapper->GetNumberOfSkippedPoints() << " invalid points skipped)\n"
             << std::fixed << std::setprecision(2) << "  ms per frame:  " << ms << " (median of "
             << options.Frames << " frames, render window); mapper "
-            << splatexample::Median(mapperMs)
-            << " (GetLastRenderTimeInMilliseconds"
+            << mapperMs << " (GetLastRenderTimeInMilliseconds"
             // OpenGL runs asynchronously: the mapper's own time need not include the GPU's work.
             << (mapper->GetLastBackend() == vtkSplatBackend::OPENGL ? ", without queued GPU work"
                                                                    : "")
@@ -700,6 +744,141 @@ vtkSmartPointer<vtkSurfaceSplatMapper> ColoredSphere(const Options& options)
   return mapper;
 }
 
+// Whether `path` names a volume: image data read by VTK's NIFTI, XML image or MetaImage reader.
+bool IsVolumeFile(const std::string& path)
+{
+  const std::string lower = vtksys::SystemTools::LowerCase(path);
+  for (const std::string extension : { ".nii", ".nii.gz", ".vti", ".mhd", ".mha" })
+  {
+    if (vtksys::SystemTools::StringEndsWith(lower, extension.c_str()))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+// Reads a volume by its extension; throws with a readable message when it cannot.
+vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path)
+{
+  if (!vtksys::SystemTools::FileExists(path, true))
+  {
+    throw std::runtime_error("no such file: '" + path + "'");
+  }
+  vtkSmartPointer<vtkAlgorithm> reader;
+  if (HasExtension(path, ".vti"))
+  {
+    auto xml = vtkSmartPointer<vtkXMLImageDataReader>::New();
+    if (!xml->CanReadFile(path.c_str()))
+    {
+      throw std::runtime_error("'" + path + "' is not a VTK XML ImageData file");
+    }
+    xml->SetFileName(path.c_str());
+    reader = xml;
+  }
+  else if (HasExtension(path, ".mhd") || HasExtension(path, ".mha"))
+  {
+    auto meta = vtkSmartPointer<vtkMetaImageReader>::New();
+    meta->SetFileName(path.c_str());
+    reader = meta;
+  }
+  else
+  {
+    auto nifti = vtkSmartPointer<vtkNIFTIImageReader>::New();
+    if (!nifti->CanReadFile(path.c_str()))
+    {
+      throw std::runtime_error("'" + path + "' is not a NIFTI file");
+    }
+    nifti->SetFileName(path.c_str());
+    reader = nifti;
+  }
+  reader->Update();
+  auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (reader->GetErrorCode() != vtkErrorCode::NoError || !image ||
+    image->GetNumberOfPoints() == 0 || !image->GetPointData()->GetScalars())
+  {
+    throw std::runtime_error("reading '" + path + "' gave no image with point scalars");
+  }
+  return image;
+}
+
+// The transfer functions of a volume file: over the scalars' finite range, transparent in the
+// lowest fifth (background), then an opacity per voxel spacing rising to 0.1 and a color from
+// dark red through orange to white.
+vtkSmartPointer<vtkVolumeProperty> RangeProperty(vtkImageData* image)
+{
+  double range[2];
+  image->GetPointData()->GetScalars()->GetFiniteRange(range, 0);
+  const double span = std::max(range[1] - range[0], 1e-12);
+  const double low = range[0] + 0.2 * span;
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(range[0], 0.0);
+  opacity->AddPoint(low, 0.0);
+  opacity->AddPoint(range[0] + span, 0.1);
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(low, 0.5, 0.1, 0.05);
+  color->AddRGBPoint(low + 0.4 * span, 0.95, 0.55, 0.3);
+  color->AddRGBPoint(range[0] + span, 1.0, 1.0, 0.95);
+  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
+  property->SetScalarOpacity(opacity);
+  property->SetColor(color);
+  property->SetScalarOpacityUnitDistance(splatexample::SmallestSpacing(image));
+  return property;
+}
+
+// Renders a volume like RenderScene a surface: `place` sets the camera.
+void RenderVolumeScene(vtkRenderWindow* window, vtkImageData* image, vtkVolumeProperty* property,
+  const Options& options, const std::string& png,
+  const std::function<void(vtkRenderer*)>& place)
+{
+  splatexample::MakeFolder(vtksys::SystemTools::GetFilenamePath(png));
+  vtkSmartPointer<vtkVolumeSplatMapper> mapper = splatexample::VolumeSplat(
+    image, options.Backend, options.Ordering, options.Cutoff.value_or(0.0));
+  property->SetShade(options.Shade ? 1 : 0);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
+  renderer->RemoveAllViewProps();
+  renderer->AddVolume(volume);
+  vtkNew<vtkCamera> camera;
+  renderer->SetActiveCamera(camera);
+  place(renderer);
+
+  // The warm-up frame builds the kernels and their lists.
+  window->Render();
+  if (mapper->GetNumberOfKernels() == 0)
+  {
+    throw std::runtime_error("nothing to draw: the transfer function hides every voxel");
+  }
+  const auto [ms, mapperMs] =
+    TimeFrames(window, options, [&mapper] { return mapper->GetLastRenderTimeInMilliseconds(); });
+  PrintBackend(window, mapper->GetLastBackend());
+  const vtkIdType kernels = mapper->GetNumberOfKernels();
+  std::cout << "  kernels:       " << kernels << " (" << mapper->GetNumberOfTransparentKernels()
+            << " transparent voxels left out, " << mapper->GetNumberOfInvalidKernels()
+            << " invalid; " << splatexample::OrderingModeName(options.Ordering)
+            << " ordering, lists";
+  for (int list = 0; list < 4; ++list)
+  {
+    if (mapper->GetListTraversed(list))
+    {
+      std::cout << " " << "XYZD"[list];
+    }
+  }
+  if (mapper->GetNumberOfProjectedKernels() >= 0)
+  {
+    std::cout << ", " << mapper->GetNumberOfProjectedKernels() << " projected";
+  }
+  std::cout << "; " << (options.Shade ? "shaded" : "unshaded") << ")\n"
+            << std::fixed << std::setprecision(2) << "  ms per frame:  " << ms << " (median of "
+            << options.Frames << " frames, render window); mapper " << mapperMs << "\n"
+            << "  kernels per s: " << std::setprecision(0) << kernels / (ms * 1e-3) << "\n";
+  splatexample::WritePNG(window, png);
+  std::cout << "  image:         " << png << " (" << options.Width << "x" << options.Height << ")"
+            << std::endl;
+}
+
 int RenderDemoScenes(const Options& options)
 {
   const std::string folder = options.OutputDir.value_or("output/demo");
@@ -728,6 +907,18 @@ int RenderDemoScenes(const Options& options)
   std::cout << "sphere: " << SpherePoints << " points colored by the scalar 'Wave'" << std::endl;
   RenderScene(window, ColoredSphere(options), options, folder + "/sphere.png");
   ++images;
+  if (vtkSmartPointer<vtkImageData> head = splatexample::MriHead(1))
+  {
+    std::cout << "mri: " << splatexample::MriFile() << ", vtkVolumeSplatMapper" << std::endl;
+    RenderVolumeScene(window, head, splatexample::MriProperty(), options, folder + "/mri.png",
+      [&head](vtkRenderer* renderer) { splatexample::PlaceMriCamera(renderer, head); });
+    ++images;
+  }
+  else
+  {
+    std::cout << "volume scene skipped: " << splatexample::MriFile()
+              << " (Debian package mricron-data) is absent\n";
+  }
   std::cout << "Wrote " << images << " images to " << vtksys::SystemTools::CollapseFullPath(folder)
             << "\n";
   return EXIT_SUCCESS;
@@ -735,8 +926,23 @@ int RenderDemoScenes(const Options& options)
 
 int RenderFile(const Options& options)
 {
-  const std::string png = options.Output.value_or(options.OutputDir.value_or("output") + "/" +
-    vtksys::SystemTools::GetFilenameWithoutLastExtension(options.Input) + ".png");
+  std::string name = vtksys::SystemTools::GetFilenameWithoutLastExtension(options.Input);
+  if (HasExtension(name, ".nii")) // name.nii.gz
+  {
+    name = vtksys::SystemTools::GetFilenameWithoutLastExtension(name);
+  }
+  const std::string png =
+    options.Output.value_or(options.OutputDir.value_or("output") + "/" + name + ".png");
+  if (IsVolumeFile(options.Input))
+  {
+    vtkSmartPointer<vtkImageData> image = ReadVolume(options.Input);
+    const int* dims = image->GetDimensions();
+    std::cout << options.Input << ": " << dims[0] << "x" << dims[1] << "x" << dims[2]
+              << " voxels" << std::endl;
+    RenderVolumeScene(MakeWindow(options), image, RangeProperty(image), options, png,
+      [&options](vtkRenderer* renderer) { SetUpCamera(renderer, options, 0.0); });
+    return EXIT_SUCCESS;
+  }
   vtkSmartPointer<vtkPolyData> data = ReadPolyData(options.Input);
   std::cout << options.Input << ": " << data->GetNumberOfPoints() << " points, "
             << data->GetNumberOfPolys() << " polygons" << std::endl;
