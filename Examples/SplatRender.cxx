@@ -484,13 +484,18 @@ vtkSmartPointer<vtkPolyData> ReadOFF(const std::string& path)
   return mesh;
 }
 
-// Reads a mesh or point cloud by its extension; throws with a readable message when it cannot.
-vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
+void RequireFile(const std::string& path)
 {
   if (!vtksys::SystemTools::FileExists(path, true))
   {
     throw std::runtime_error("no such file: '" + path + "'");
   }
+}
+
+// Reads a mesh or point cloud by its extension; throws with a readable message when it cannot.
+vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
+{
+  RequireFile(path);
   vtkSmartPointer<vtkPolyData> data;
   if (HasExtension(path, ".ply"))
   {
@@ -761,10 +766,7 @@ bool IsVolumeFile(const std::string& path)
 // Reads a volume by its extension; throws with a readable message when it cannot.
 vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path)
 {
-  if (!vtksys::SystemTools::FileExists(path, true))
-  {
-    throw std::runtime_error("no such file: '" + path + "'");
-  }
+  RequireFile(path);
   vtkSmartPointer<vtkAlgorithm> reader;
   if (HasExtension(path, ".vti"))
   {

@@ -31,6 +31,29 @@ import traceback
 from splat_checks import check, exit_status, info_value
 
 
+def check_defaults_and_enumerations(smproxy, mapper, what, defaults, entries, texts):
+    """Checks a mapper proxy's defaults (read back through the <Name>Info properties after
+    UpdateVTKObjects), the entries of its enumerations, and the text its enumerations read as.
+    `what` prefixes the messages."""
+    for name, value in defaults.items():
+        got = info_value(smproxy, name + "Info")
+        if isinstance(value, str):
+            ok = got == value
+        else:
+            ok = close(got, value, 1e-9)
+        check(ok, "%sdefault %s is %r (got %r)" % (what, name, value, got))
+    for name, text in texts.items():
+        got = getattr(mapper, name)
+        check(got == text, "%sdefault %s reads as %r (got %r)" % (what, name, text, got))
+    for name, expected in entries.items():
+        enum = smproxy.GetProperty(name).FindDomain("vtkSMEnumerationDomain")
+        found = {}
+        if check(enum is not None, "%s%s has an enumeration domain" % (what, name)):
+            found = {enum.GetEntryText(i): enum.GetEntryValue(i)
+                     for i in range(enum.GetNumberOfEntries())}
+        check(found == expected, "%s%s entries are %s (got %s)" % (what, name, expected, found))
+
+
 def close(a, b, tol=1e-12):
     return a is not None and b is not None and math.isclose(a, b, rel_tol=tol, abs_tol=tol)
 
@@ -80,35 +103,18 @@ def test_mapper(servermanager):
     # wrapping only, so Python sees the object as its nearest Python-wrapped base class and cannot
     # call them itself), agrees with the mapper's documented defaults.
     smproxy.UpdateVTKObjects()
-    defaults = {"Cutoff": 1.0, "Radius": 1.0, "DepthThreshold": 1.0, "FilterMode": 0,
-                "Backend": 0, "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.4,
-                "RadiusArrayName": "Radius", "OpacityArrayName": "Opacity",
-                "TangentAxis0ArrayName": "TangentAxis0",
-                "TangentAxis1ArrayName": "TangentAxis1"}
-    for name, value in defaults.items():
-        got = info_value(smproxy, name + "Info")
-        if isinstance(value, str):
-            ok = got == value
-        else:
-            ok = close(got, value, 1e-9)
-        check(ok, "default %s is %r (got %r)" % (name, value, got))
-    check(mapper.FilterMode == "EWA", "default FilterMode reads as 'EWA' (got %r)"
-          % (mapper.FilterMode,))
-    check(mapper.Backend == "Auto", "default Backend reads as 'Auto' (got %r)"
-          % (mapper.Backend,))
+    check_defaults_and_enumerations(
+        smproxy, mapper, "",
+        {"Cutoff": 1.0, "Radius": 1.0, "DepthThreshold": 1.0, "FilterMode": 0,
+         "Backend": 0, "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.4,
+         "RadiusArrayName": "Radius", "OpacityArrayName": "Opacity",
+         "TangentAxis0ArrayName": "TangentAxis0",
+         "TangentAxis1ArrayName": "TangentAxis1"},
+        {"FilterMode": {"EWA": 0, "Circular": 1, "Unfiltered": 2, "Approximate": 3},
+         "Backend": {"Auto": 0, "CPU": 1, "OpenGL": 2}},
+        {"FilterMode": "EWA", "Backend": "Auto"})
 
-    # The enumerations (their values are the mapper's enums) and the NumberOfLayers range.
-    expected_entries = {
-        "FilterMode": {"EWA": 0, "Circular": 1, "Unfiltered": 2, "Approximate": 3},
-        "Backend": {"Auto": 0, "CPU": 1, "OpenGL": 2},
-    }
-    for name, expected in expected_entries.items():
-        enum = smproxy.GetProperty(name).FindDomain("vtkSMEnumerationDomain")
-        entries = {}
-        if check(enum is not None, "%s has an enumeration domain" % name):
-            entries = {enum.GetEntryText(i): enum.GetEntryValue(i)
-                       for i in range(enum.GetNumberOfEntries())}
-        check(entries == expected, "%s entries are %s (got %s)" % (name, expected, entries))
+    # The NumberOfLayers range.
     layers = smproxy.GetProperty("NumberOfLayers").FindDomain("vtkSMIntRangeDomain")
     if check(layers is not None, "NumberOfLayers has a range domain"):
         check(layers.GetMinimum(0) == 1 and layers.GetMaximum(0) == 8,
@@ -212,34 +218,17 @@ def test_volume_mapper(servermanager):
 
     # Defaults, as the VTK object reports them after the XML's defaults are pushed.
     smproxy.UpdateVTKObjects()
-    defaults = {"OrderingMode": 0, "BlendThreshold": 0.85, "Cutoff": 4.5, "Backend": 0,
-                "CovarianceArrayName": "Covariance", "ScaleArrayName": "Scale",
-                "RotationArrayName": "Rotation", "ColorArrayName": "Color",
-                "OpacityArrayName": "Opacity"}
-    for name, value in defaults.items():
-        got = info_value(smproxy, name + "Info")
-        if isinstance(value, str):
-            ok = got == value
-        else:
-            ok = close(got, value, 1e-9)
-        check(ok, "volume default %s is %r (got %r)" % (name, value, got))
-    check(mapper.OrderingMode == "Blended", "default OrderingMode reads as 'Blended' (got %r)"
-          % (mapper.OrderingMode,))
-    check(mapper.Backend == "Auto", "volume default Backend reads as 'Auto' (got %r)"
-          % (mapper.Backend,))
-
     expected_entries = {
         "OrderingMode": {"Blended": 0, "Clipped": 1, "SingleAxis": 2, "DepthSorted": 3},
         "Backend": {"Auto": 0, "CPU": 1, "OpenGL": 2},
     }
-    for name, expected in expected_entries.items():
-        enum = smproxy.GetProperty(name).FindDomain("vtkSMEnumerationDomain")
-        entries = {}
-        if check(enum is not None, "volume %s has an enumeration domain" % name):
-            entries = {enum.GetEntryText(i): enum.GetEntryValue(i)
-                       for i in range(enum.GetNumberOfEntries())}
-        check(entries == expected, "volume %s entries are %s (got %s)"
-              % (name, expected, entries))
+    check_defaults_and_enumerations(
+        smproxy, mapper, "volume ",
+        {"OrderingMode": 0, "BlendThreshold": 0.85, "Cutoff": 4.5, "Backend": 0,
+         "CovarianceArrayName": "Covariance", "ScaleArrayName": "Scale",
+         "RotationArrayName": "Rotation", "ColorArrayName": "Color",
+         "OpacityArrayName": "Opacity"},
+        expected_entries, {"OrderingMode": "Blended", "Backend": "Auto"})
     check_domain_range(smproxy, "BlendThreshold", "vtkSMDoubleRangeDomain", 0.0, 0.99)
     check_domain_range(smproxy, "Cutoff", "vtkSMDoubleRangeDomain", 0.001, 50.0)
 
@@ -282,12 +271,12 @@ def test_volume_mapper(servermanager):
               % (mode, mapper.OrderingMode))
 
     # Render statistics are exposed before any render: the counts are 0 (the mapper has no
-    # input), LastBackend is a backend value (the mapper starts it at CPU, 1).
+    # input), LastBackend is Auto (0): no backend drew yet.
     for name in counts:
         got = info_value(smproxy, name)
         check(got == 0, "volume %s is 0 before a render (got %s)" % (name, got))
     got = info_value(smproxy, "LastBackend")
-    check(got in (0, 1), "volume LastBackend before a render is 0 or 1 (got %s)" % (got,))
+    check(got == 0, "volume LastBackend before a render is 0 (got %s)" % (got,))
 
 
 def test_surfel_generator(simple, servermanager):
