@@ -81,7 +81,7 @@ inline glm::dvec3 BoundsCenter(const double* xyz, std::size_t count)
 constexpr int MaximumLights = 8;
 
 /// Shader source with the lighting code (vtkSplatLighting.glsl) put in for
-/// //VTK::SplatLighting::Dec.
+/// //VTK::SplatLighting::Dec. Callers keep the result (a static), not remake it every frame.
 inline std::string WithLighting(std::string source)
 {
   vtkShaderProgram::Substitute(source, "//VTK::SplatLighting::Dec", vtkSplatLighting);

@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <string>
 
 vtkStandardNewMacro(vtkOpenGLSurfaceSplatRasterizer);
 
@@ -379,7 +380,8 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::ResolveLayer(vtkOpenGLRenderWin
   const vtkSurfaceSplatRasterizer::Camera& camera, const std::vector<splat::Light>& lights,
   const splat::Material& material, vtkSurfaceSplatRasterizer* settings, int layer)
 {
-  vtkShaderProgram* program = splat::ReadyQuad(this->Resolve, window, splat::WithLighting(vtkSurfaceSplatResolveFS).c_str());
+  static const std::string resolveSource = splat::WithLighting(vtkSurfaceSplatResolveFS);
+  vtkShaderProgram* program = splat::ReadyQuad(this->Resolve, window, resolveSource.c_str());
   if (!program)
   {
     return;

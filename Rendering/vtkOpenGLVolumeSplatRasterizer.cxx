@@ -404,8 +404,9 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
   }
 
   // 3. Each list into its own buffer, front to back in each direction some pixel needs.
-  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
-    splat::WithLighting(vtkVolumeSplatVS).c_str(), vtkVolumeSplatFS, "");
+  static const std::string vertexSource = splat::WithLighting(vtkVolumeSplatVS);
+  vtkShaderProgram* program =
+    window->GetShaderCache()->ReadyShaderProgram(vertexSource.c_str(), vtkVolumeSplatFS, "");
   if (!program || !program->GetCompiled())
   {
     vtkErrorMacro("The volume splatting shaders did not compile.");

@@ -194,8 +194,8 @@ glm::vec3 VoxelNormal(vtkDataArray* scalars, const int dims[3], int x, int y, in
   const glm::dmat3& gradientToModel)
 {
   const int index[3] = { x, y, z };
-  const vtkIdType center = x + static_cast<vtkIdType>(dims[0]) * (y + static_cast<vtkIdType>(dims[1]) * z);
   const vtkIdType strides[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
+  const vtkIdType center = x + strides[1] * y + strides[2] * z;
   const double s = scalars->GetComponent(center, 0);
   glm::dvec3 gradient(0.0);
   for (int axis = 0; axis < 3; ++axis)
@@ -653,11 +653,10 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
       // Non-finite normals shade like zero ones: ambient only.
       double normal[3];
       normals->GetTuple(i, normal);
+      const bool finite = IsFinite(normal, 3);
       for (int c = 0; c < 3; ++c)
       {
-        k.Normals.push_back(std::isfinite(normal[c]) && IsFinite(normal, 3)
-            ? static_cast<float>(normal[c])
-            : 0.0f);
+        k.Normals.push_back(finite ? static_cast<float>(normal[c]) : 0.0f);
       }
     }
   }
