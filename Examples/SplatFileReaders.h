@@ -1,0 +1,304 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The files the example programs read, by extension: meshes and point clouds (.ply, .vtp, .xyz,
+// .off) and volumes (.nii, .nii.gz, .vti, .mhd, .mha). Every reader throws std::runtime_error
+// with a message naming the file when it cannot read it.
+#ifndef SplatFileReaders_h
+#define SplatFileReaders_h
+
+#include "vtkCellArray.h"
+#include "vtkErrorCode.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMetaImageReader.h"
+#include "vtkNIFTIImageReader.h"
+#include "vtkNew.h"
+#include "vtkPLYReader.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include <vtksys/SystemTools.hxx>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace splatexample
+{
+/// Whether the file name's last extension is `extension` (".ply"), in any letter case.
+inline bool HasExtension(const std::string& path, const std::string& extension)
+{
+  return vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path)) ==
+    extension;
+}
+
+// Text point cloud: "x y z" or "x y z nx ny nz" per line, the same on every line; lines
+// starting with # are comments.
+inline vtkSmartPointer<vtkPolyData> ReadXYZ(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    throw std::runtime_error("cannot open '" + path + "'");
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  std::size_t columns = 0;
+  std::string line;
+  for (int lineNumber = 1; std::getline(in, line); ++lineNumber)
+  {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#')
+    {
+      continue;
+    }
+    std::istringstream fields(line);
+    std::vector<double> values;
+    double value;
+    while (fields >> value)
+    {
+      values.push_back(value);
+    }
+    const std::string where = path + ":" + std::to_string(lineNumber) + ": ";
+    if (!fields.eof() || (values.size() != 3 && values.size() != 6))
+    {
+      throw std::runtime_error(where + "expected 'x y z' or 'x y z nx ny nz', got '" + line + "'");
+    }
+    if (columns != 0 && values.size() != columns)
+    {
+      throw std::runtime_error(where + std::to_string(values.size()) +
+        " numbers where earlier lines have " + std::to_string(columns));
+    }
+    columns = values.size();
+    points->InsertNextPoint(values.data());
+    if (columns == 6)
+    {
+      normals->InsertNextTuple(values.data() + 3);
+    }
+  }
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  cloud->SetPoints(points);
+  if (columns == 6)
+  {
+    cloud->GetPointData()->SetNormals(normals);
+  }
+  return cloud;
+}
+
+// Object File Format mesh: "OFF", the counts "vertices faces edges", one "x y z" line per
+// vertex, one "n i_0 ... i_n-1" line per face; # starts a comment. Values after those (colors)
+// are ignored. VTK 9.1 has no OFF reader.
+inline vtkSmartPointer<vtkPolyData> ReadOFF(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in)
+  {
+    throw std::runtime_error("cannot open '" + path + "'");
+  }
+  std::string line;
+  int lineNumber = 0;
+  std::istringstream fields;
+  // Loads the next line holding data into `fields`.
+  auto nextLine = [&]()
+  {
+    while (std::getline(in, line))
+    {
+      ++lineNumber;
+      line.erase(std::min(line.find('#'), line.size()));
+      if (line.find_first_not_of(" \t\r") != std::string::npos)
+      {
+        fields.clear();
+        fields.str(line);
+        return;
+      }
+    }
+    throw std::runtime_error(path + ": the file ends early");
+  };
+  auto fail = [&](const std::string& what)
+  { return std::runtime_error(path + ":" + std::to_string(lineNumber) + ": " + what); };
+
+  nextLine();
+  std::string keyword;
+  fields >> keyword;
+  if (keyword != "OFF")
+  {
+    throw fail("not an OFF file (the first line must be OFF)");
+  }
+  long long vertexCount, faceCount;
+  if (!(fields >> vertexCount)) // the counts may follow the keyword on the same line
+  {
+    nextLine();
+    fields >> vertexCount;
+  }
+  if (!(fields >> faceCount) || vertexCount <= 0 || faceCount < 0)
+  {
+    throw fail("expected the counts 'vertices faces edges'");
+  }
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->Allocate(vertexCount);
+  for (long long i = 0; i < vertexCount; ++i)
+  {
+    nextLine();
+    double p[3];
+    if (!(fields >> p[0] >> p[1] >> p[2]))
+    {
+      throw fail("expected a vertex 'x y z'");
+    }
+    points->InsertNextPoint(p);
+  }
+  vtkNew<vtkCellArray> polys;
+  std::vector<vtkIdType> ids;
+  for (long long i = 0; i < faceCount; ++i)
+  {
+    nextLine();
+    long long n;
+    if (!(fields >> n) || n < 3)
+    {
+      throw fail("expected a face 'n i_0 ... i_n-1' with n >= 3");
+    }
+    ids.resize(n);
+    for (auto& id : ids)
+    {
+      long long index;
+      if (!(fields >> index) || index < 0 || index >= vertexCount)
+      {
+        throw fail("face vertex index missing or out of range");
+      }
+      id = static_cast<vtkIdType>(index);
+    }
+    polys->InsertNextCell(static_cast<vtkIdType>(n), ids.data());
+  }
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->SetPoints(points);
+  mesh->SetPolys(polys);
+  return mesh;
+}
+
+inline void RequireFile(const std::string& path)
+{
+  if (!vtksys::SystemTools::FileExists(path, true))
+  {
+    throw std::runtime_error("no such file: '" + path + "'");
+  }
+}
+
+// Reads a mesh or point cloud by its extension; throws with a readable message when it cannot.
+inline vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
+{
+  RequireFile(path);
+  vtkSmartPointer<vtkPolyData> data;
+  if (HasExtension(path, ".ply"))
+  {
+    if (!vtkPLYReader::CanReadFile(path.c_str()))
+    {
+      throw std::runtime_error("'" + path + "' is not a readable PLY file");
+    }
+    vtkNew<vtkPLYReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    data = reader->GetOutput();
+  }
+  else if (HasExtension(path, ".vtp"))
+  {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    if (!reader->CanReadFile(path.c_str()))
+    {
+      throw std::runtime_error("'" + path + "' is not a VTK XML PolyData file");
+    }
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    if (reader->GetErrorCode() != vtkErrorCode::NoError)
+    {
+      throw std::runtime_error("reading '" + path + "' failed");
+    }
+    data = reader->GetOutput();
+  }
+  else if (HasExtension(path, ".xyz"))
+  {
+    data = ReadXYZ(path);
+  }
+  else if (HasExtension(path, ".off"))
+  {
+    data = ReadOFF(path);
+  }
+  else
+  {
+    throw std::runtime_error(
+      "'" + path + "': unknown file type; splat_render reads .ply, .vtp, .xyz and .off (surfaces) "
+      "and .nii, .nii.gz, .vti, .mhd and .mha (volumes)");
+  }
+  if (data->GetNumberOfPoints() == 0)
+  {
+    throw std::runtime_error("'" + path + "' holds no points");
+  }
+  return data;
+}
+
+// Whether `path` names a volume: image data read by VTK's NIFTI, XML image or MetaImage reader.
+inline bool IsVolumeFile(const std::string& path)
+{
+  const std::string lower = vtksys::SystemTools::LowerCase(path);
+  for (const std::string extension : { ".nii", ".nii.gz", ".vti", ".mhd", ".mha" })
+  {
+    if (vtksys::SystemTools::StringEndsWith(lower, extension.c_str()))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+// Reads a volume by its extension; throws with a readable message when it cannot.
+inline vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path)
+{
+  RequireFile(path);
+  vtkSmartPointer<vtkAlgorithm> reader;
+  if (HasExtension(path, ".vti"))
+  {
+    auto xml = vtkSmartPointer<vtkXMLImageDataReader>::New();
+    if (!xml->CanReadFile(path.c_str()))
+    {
+      throw std::runtime_error("'" + path + "' is not a VTK XML ImageData file");
+    }
+    xml->SetFileName(path.c_str());
+    reader = xml;
+  }
+  else if (HasExtension(path, ".mhd") || HasExtension(path, ".mha"))
+  {
+    auto meta = vtkSmartPointer<vtkMetaImageReader>::New();
+    meta->SetFileName(path.c_str());
+    reader = meta;
+  }
+  else
+  {
+    auto nifti = vtkSmartPointer<vtkNIFTIImageReader>::New();
+    if (!nifti->CanReadFile(path.c_str()))
+    {
+      throw std::runtime_error("'" + path + "' is not a NIFTI file");
+    }
+    nifti->SetFileName(path.c_str());
+    reader = nifti;
+  }
+  reader->Update();
+  auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (reader->GetErrorCode() != vtkErrorCode::NoError || !image ||
+    image->GetNumberOfPoints() == 0 || !image->GetPointData()->GetScalars())
+  {
+    throw std::runtime_error("reading '" + path + "' gave no image with point scalars");
+  }
+  return image;
+}
+}
+
+#endif
