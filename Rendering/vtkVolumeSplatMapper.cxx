@@ -231,6 +231,7 @@ vtkVolumeSplatMapper::vtkVolumeSplatMapper()
   this->SetRotationArrayName("Rotation");
   this->SetColorArrayName("Color");
   this->SetOpacityArrayName("Opacity");
+  this->SetSampleVolumeArrayName("SampleVolume");
 }
 
 //------------------------------------------------------------------------------
@@ -241,6 +242,7 @@ vtkVolumeSplatMapper::~vtkVolumeSplatMapper()
   this->SetRotationArrayName(nullptr);
   this->SetColorArrayName(nullptr);
   this->SetOpacityArrayName(nullptr);
+  this->SetSampleVolumeArrayName(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -344,7 +346,8 @@ std::string vtkVolumeSplatMapper::KernelSettings()
 {
   std::ostringstream settings;
   for (const char* name : { this->CovarianceArrayName, this->ScaleArrayName,
-         this->RotationArrayName, this->ColorArrayName, this->OpacityArrayName, this->ArrayName })
+         this->RotationArrayName, this->ColorArrayName, this->OpacityArrayName,
+         this->SampleVolumeArrayName, this->ArrayName })
   {
     settings << (name ? name : "") << '\n';
   }
@@ -539,6 +542,7 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
   vtkDataArray* colors = ArrayOf(input, this->ColorArrayName, 3);
   colors = colors ? colors : ArrayOf(input, this->ColorArrayName, 4);
   vtkDataArray* opacities = ArrayOf(input, this->OpacityArrayName, 1);
+  vtkDataArray* sampleVolumes = ArrayOf(input, this->SampleVolumeArrayName, 1);
   vtkDataArray* normals = nullptr;
   if (property->GetShade(0))
   {
@@ -615,7 +619,10 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
     {
       valid = valid && std::isfinite(scalar);
       entry = valid ? tables->Index(scalar) : 0;
-      strength = tables->Extinction[entry] * mass;
+      // A field's sample stands for its volume; a free kernel's density peaks at tau.
+      const double volume = sampleVolumes ? sampleVolumes->GetComponent(i, 0) : mass;
+      valid = valid && std::isfinite(volume) && volume >= 0.0;
+      strength = tables->Extinction[entry] * volume;
     }
     double rgb[4] = { 1.0, 1.0, 1.0, 1.0 };
     if (colors)
@@ -820,6 +827,7 @@ void vtkVolumeSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RotationArrayName: " << name(this->RotationArrayName) << "\n";
   os << indent << "ColorArrayName: " << name(this->ColorArrayName) << "\n";
   os << indent << "OpacityArrayName: " << name(this->OpacityArrayName) << "\n";
+  os << indent << "SampleVolumeArrayName: " << name(this->SampleVolumeArrayName) << "\n";
   os << indent << "NumberOfKernels: " << this->NumberOfKernels << "\n";
   os << indent << "NumberOfTransparentKernels: " << this->NumberOfTransparentKernels << "\n";
   os << indent << "NumberOfInvalidKernels: " << this->NumberOfInvalidKernels << "\n";

@@ -26,7 +26,11 @@
  *   (OpacityArrayName, default "Opacity") as each kernel's peak opacity, alpha(x) =
  *   opacity exp(-beta(x)) as in 3D Gaussian Splatting, or else from the scalars through the
  *   scalar opacity transfer function as a density whose peak is the transfer function's
- *   extinction (below).
+ *   extinction (below). Kernels that sample a field (the voxels of a sparse grid, as
+ *   vtkOpenVDBReader writes them) carry instead the world volume their sample stands for in a
+ *   1-component array (SampleVolumeArrayName, default "SampleVolume"): such a kernel's density
+ *   integrates to the extinction times that volume, as image-data voxels do, so that the kernels
+ *   reconstruct the field rather than each peaking at it.
  * The scalars are selected as for VTK's volume mappers (SetScalarMode, SelectScalarArray); the
  * first component is used.
  *
@@ -171,6 +175,8 @@ public:
   vtkGetStringMacro(ColorArrayName);
   vtkSetStringMacro(OpacityArrayName);
   vtkGetStringMacro(OpacityArrayName);
+  vtkSetStringMacro(SampleVolumeArrayName);
+  vtkGetStringMacro(SampleVolumeArrayName);
   ///@}
 
   ///@{
@@ -252,6 +258,7 @@ protected:
   char* RotationArrayName = nullptr;
   char* ColorArrayName = nullptr;
   char* OpacityArrayName = nullptr;
+  char* SampleVolumeArrayName = nullptr;
   vtkIdType NumberOfKernels = 0;
   vtkIdType NumberOfTransparentKernels = 0;
   vtkIdType NumberOfInvalidKernels = 0;
