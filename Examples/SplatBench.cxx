@@ -7,6 +7,7 @@
 // memory so far, what our mapper culled and skipped, the memory per splat that the case added
 // and the ratio of the peer's time to the case's.
 // Run `splat_bench --help` for the options.
+#include "SplatBenchCases.h"
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
 #include "SplatVolumeScenes.h"
@@ -29,12 +30,9 @@
 #include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
-#include <array>
-#include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
-#include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -43,15 +41,10 @@
 #include <string>
 #include <vector>
 
-#include <sys/resource.h> // getrusage
-#include <unistd.h>       // sysconf
-
-#ifdef __GLIBC__
-#include <malloc.h> // malloc_trim
-#endif
 
 namespace
 {
+using namespace splatbench;
 using splatexample::ParseCount;
 using splatexample::SplitList;
 using splatexample::UsageError;
@@ -129,23 +122,6 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
 Environment: SPLAT_DATA_DIR, the folder holding bunny.ply (default: ../shared/data next to the
 source tree); SPLAT_MRI_FILE, the MRI (default /usr/share/mricron/templates/ch2.nii.gz).
 )";
-
-struct Options
-{
-  std::vector<std::string> Scenes = { "sphere", "bunny", "mri", "gaussians" };
-  std::vector<long long> Points = { 100000, 1000000, 5000000 };
-  long long Kernels = 1000000;
-  long long Grid = 256;
-  int MriShrink = 1;
-  std::vector<long long> Sizes = { 512, 1024 };
-  std::vector<std::string> Mappers = { "splat", "pointgaussian", "fixedpoint", "gpuraycast" };
-  std::vector<std::string> Backends = { "cpu", "opengl" };
-  std::vector<std::string> VolumeBackends = { "cpu" }; // --backends sets both
-  int Frames = 10;
-  double Budget = 10.0;
-  std::string Output = "output/bench/bench.csv";
-  std::string ImageDir;
-};
 
 std::vector<long long> ParseCounts(
   const std::string& option, const std::string& text, long long low, long long high)
@@ -245,19 +221,6 @@ vtkSmartPointer<vtkPolyData> BunnySurfels(const std::string& file)
   return surfels->GetOutput();
 }
 
-struct MapperKind
-{
-  std::string Name;    // the --mappers name
-  std::string Class;   // the VTK class (vtkPointGaussianMapper::New gives an OpenGL subclass)
-  std::string Backend; // what draws the splats
-  std::string Setting;
-  bool BackfaceCulling = false;             // the actor property's BackfaceCulling
-  bool ClosedOnly = false;                  // only for closed, outward-oriented scenes (the sphere)
-  int SplatBackend = vtkSplatBackend::AUTO; // the splat mappers' SetBackend
-  int FilterMode = vtkSurfaceSplatMapper::EWA;
-  int Ordering = vtkVolumeSplatMapper::BLENDED; // vtkVolumeSplatMapper's SetOrderingMode
-};
-
 bool Chosen(const std::vector<std::string>& list, const std::string& name)
 {
   return std::find(list.begin(), list.end(), name) != list.end();
@@ -340,25 +303,6 @@ vtkSmartPointer<vtkMapper> MakeMapper(const MapperKind& kind, vtkPolyData* surfe
   return splatexample::PointGaussianDisks(surfels);
 }
 
-// What a case draws: a prop (an actor or a volume) with its mapper, and the mapper's input.
-struct Stage
-{
-  vtkSmartPointer<vtkProp3D> Prop;
-  vtkSmartPointer<vtkDataSet> Data;
-};
-
-// A scene: its cases, how to make each case's prop and where to put the camera.
-struct Scene
-{
-  std::string Name;
-  bool Closed = false; // closed and outward-oriented: the backface setting applies
-  std::vector<MapperKind> Kinds;
-  std::string Peer; // the MapperKind::Name whose time the peer_ratio column divides
-  std::function<Stage(const MapperKind&)> Make;
-  std::function<void(vtkRenderer*, const Stage&)> Place;
-  int Frames = 0; // at most this many timed frames per case (0: --frames)
-};
-
 // A surface scene: the points made afresh for every case by makeData (so that the case's memory
 // includes them), an actor, the camera framing the points.
 Scene SurfaceScene(const std::string& name, bool closed,
@@ -427,289 +371,6 @@ Scene VolumeScene(const std::string& name, vtkDataSet* kernels, vtkVolumePropert
   };
   scene.Place = [place](vtkRenderer* renderer, const Stage&) { place(renderer); };
   return scene;
-}
-
-double PeakResidentMegabytes()
-{
-  rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0; // kilobytes on Linux
-}
-
-// The process's current resident set size in bytes: the second field of /proc/self/statm, in
-// pages. -1 where it cannot be read (not Linux).
-long long CurrentResidentBytes()
-{
-  std::ifstream statm("/proc/self/statm");
-  long long sizePages = 0;
-  long long residentPages = 0;
-  if (!(statm >> sizePages >> residentPages))
-  {
-    return -1;
-  }
-  return residentPages * static_cast<long long>(sysconf(_SC_PAGESIZE));
-}
-
-// Hands the heap's free memory back to the system, so the resident set is the memory in use:
-// without it, what an earlier case freed stays resident (glibc keeps freed heap pages and raises
-// its mmap threshold after large frees) and the next case reuses it without growing the RSS.
-void ReleaseFreeHeapMemory()
-{
-#ifdef __GLIBC__
-  malloc_trim(0);
-#endif
-}
-
-// Median milliseconds per frame after a warm-up frame (surfel or kernel build, buffer upload,
-// shader compilation): at least one frame, at most `maxFrames`, and after the first only while
-// the elapsed time plus the last frame's stays within the budget (so that slow cases, such as
-// vtkPointGaussianMapper on millions of points under llvmpipe, keep to it). A volume is marked
-// modified before each frame, as in TestVolumeSplatCrossRenderer. `frames` gets the number of
-// timed frames.
-double MillisecondsPerFrame(vtkRenderWindow* window, const Options& options, int maxFrames,
-  vtkVolume* volume, int& frames)
-{
-  using Clock = std::chrono::steady_clock;
-  window->Render();
-  window->WaitForCompletion();
-  std::vector<double> ms;
-  const auto start = Clock::now();
-  while (static_cast<int>(ms.size()) < maxFrames &&
-    (ms.empty() ||
-      std::chrono::duration<double>(Clock::now() - start).count() + ms.back() * 1e-3 <=
-        options.Budget))
-  {
-    if (volume)
-    {
-      volume->Modified();
-    }
-    const auto frameStart = Clock::now();
-    window->Render();
-    // OpenGL runs asynchronously: the frame is done when the GL queue is.
-    window->WaitForCompletion();
-    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - frameStart).count());
-  }
-  frames = static_cast<int>(ms.size());
-  return splatexample::Median(ms);
-}
-
-// What one case measured.
-struct CaseResult
-{
-  const MapperKind* Kind = nullptr;
-  vtkIdType Points = 0;
-  double Milliseconds = 0.0;
-  int Frames = 0;
-  bool HasCounts = false; // the splat mapper's statistics of the last frame
-  // rendered, frustum_culled, backface_culled, negligible, skipped (see the usage)
-  std::array<std::string, 5> Counts;
-  std::string DrawnBy; // the splat mappers' GetLastBackend
-  long long ResidentGrowth = 0; // bytes; see MeasureCase
-  bool HasResidentGrowth = false;
-};
-
-// The splat mappers' statistics of the last frame, in the columns rendered .. skipped (see the
-// usage for what they mean for volumes), and the backend that drew it.
-void CollectCounts(vtkProp3D* prop, CaseResult& result)
-{
-  if (auto* actor = vtkActor::SafeDownCast(prop))
-  {
-    if (auto* splat = vtkSurfaceSplatMapper::SafeDownCast(actor->GetMapper()))
-    {
-      result.HasCounts = true;
-      result.Counts = { std::to_string(splat->GetNumberOfRenderedSplats()),
-        std::to_string(splat->GetNumberOfFrustumCulledSplats()),
-        std::to_string(splat->GetNumberOfBackfaceCulledSplats()),
-        std::to_string(splat->GetNumberOfNegligibleSplats()),
-        std::to_string(splat->GetNumberOfSkippedPoints()) };
-      result.DrawnBy = vtkSplatBackend::GetBackendAsString(splat->GetLastBackend());
-    }
-  }
-  else if (auto* volume = vtkVolume::SafeDownCast(prop))
-  {
-    if (auto* splat = vtkVolumeSplatMapper::SafeDownCast(volume->GetMapper()))
-    {
-      result.Points = splat->GetNumberOfKernels();
-      result.HasCounts = true;
-      result.Counts = { std::to_string(splat->GetNumberOfProjectedKernels()),
-        std::to_string(splat->GetNumberOfFrustumCulledKernels()), "",
-        std::to_string(splat->GetNumberOfTransparentKernels()),
-        std::to_string(
-          splat->GetNumberOfInvalidKernels() + splat->GetNumberOfNearPlaneKernels()) };
-      result.DrawnBy = vtkSplatBackend::GetBackendAsString(splat->GetLastBackend());
-    }
-  }
-}
-
-// Makes one case's prop (scene.Make), renders it in `window` and returns what it measured; the
-// case's prop, mapper and (for surface scenes) data are released on return. The points are the
-// input's, or vtkVolumeSplatMapper's kernels (its lists, transparent voxels left out).
-//
-// Memory per splat: the current resident set size (/proc/self/statm) is read twice, once
-// before the case's data and mapper are built and once after its timed frames, while they are
-// all still alive; the difference is what the case holds (points, normals and radii, the
-// mapper's surfel arrays and frame buffers, or vtkPointGaussianMapper's buffers and, on Mesa's
-// llvmpipe, its driver-side copies), and bytes_per_splat is that difference divided by the
-// number of points. So that both readings are the memory in use, the heap's free pages are
-// handed back (malloc_trim) before each: freed temporaries (the surfel generator's neighbor
-// search, vtkPointGaussianMapper's staging arrays) would otherwise stay resident and count. The
-// previous case is released before the first reading, and the window has already been rendered
-// once, empty, at the case's size (its own buffers are not the case's). It is the growth at the
-// end of the case, not a peak: transient allocations freed before the last frame are not in
-// it. Shared one-time costs (shader compilation, the driver's first-use allocations) land on the
-// first case that triggers them. At small point counts the per-pixel buffers (the rasterizer's
-// fragments at the case's image size) dominate. Volume scenes make their data once, before
-// their cases: there the growth is the mapper's (kernel lists, buffers, textures) alone.
-CaseResult MeasureCase(vtkRenderWindow* window, const MapperKind& kind, const Scene& scene,
-  const Options& options, long long size)
-{
-  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
-  CaseResult result;
-  result.Kind = &kind;
-  ReleaseFreeHeapMemory();
-  const long long before = CurrentResidentBytes();
-  {
-    const Stage stage = scene.Make(kind);
-    result.Points = stage.Data->GetNumberOfPoints();
-    renderer->AddViewProp(stage.Prop);
-    scene.Place(renderer, stage);
-
-    result.Milliseconds = MillisecondsPerFrame(window, options,
-      scene.Frames > 0 ? std::min(scene.Frames, options.Frames) : options.Frames,
-      vtkVolume::SafeDownCast(stage.Prop), result.Frames);
-    ReleaseFreeHeapMemory();
-    const long long after = CurrentResidentBytes();
-    if (before >= 0 && after >= 0)
-    {
-      result.ResidentGrowth = after - before;
-      result.HasResidentGrowth = true;
-    }
-    CollectCounts(stage.Prop, result);
-    if (!options.ImageDir.empty())
-    {
-      std::string setting = kind.Setting;
-      std::replace(setting.begin(), setting.end(), ' ', '-');
-      splatexample::WritePNG(window,
-        options.ImageDir + "/" + scene.Name + "-" + std::to_string(result.Points) + "-" +
-          std::to_string(size) + "-" + kind.Name + "-" +
-          vtksys::SystemTools::LowerCase(kind.Backend) + "-" + setting + ".png");
-    }
-    // Releases the case's graphics resources; the prop, mapper and data go with this scope.
-    renderer->RemoveAllViewProps();
-  }
-  return result;
-}
-
-// The CSV row of a case; `peerMilliseconds` is the peer's time at the same size (0: not
-// measured).
-std::string CsvRow(const std::string& scene, long long size, const CaseResult& r,
-  double peerMilliseconds)
-{
-  const MapperKind& kind = *r.Kind;
-  std::ostringstream row;
-  row << scene << "," << kind.Class << "," << kind.Backend << "," << kind.Setting << ","
-      << r.Points << "," << size << "," << size << "," << std::fixed << std::setprecision(2)
-      << r.Milliseconds << "," << std::setprecision(0) << r.Points / (r.Milliseconds * 1e-3)
-      << "," << std::setprecision(1) << PeakResidentMegabytes() << ",";
-  for (const std::string& count : r.Counts)
-  {
-    row << count << ",";
-  }
-  if (r.HasResidentGrowth && r.Points > 0)
-  {
-    row << std::setprecision(1) << static_cast<double>(r.ResidentGrowth) / r.Points;
-  }
-  row << ",";
-  if (peerMilliseconds > 0.0 && r.Milliseconds > 0.0)
-  {
-    row << std::setprecision(3) << peerMilliseconds / r.Milliseconds;
-  }
-  row << "," << r.DrawnBy << "\n";
-  return row.str();
-}
-
-// The one-line summary of a case on stderr.
-std::string Summary(const std::string& scene, long long size, const CaseResult& r)
-{
-  const MapperKind& kind = *r.Kind;
-  const bool volume =
-    kind.Class != "vtkSurfaceSplatMapper" && kind.Class != "vtkPointGaussianMapper";
-  std::ostringstream summary;
-  summary << "splat_bench: " << scene << " " << r.Points << (volume ? " kernels " : " points ")
-          << size << "x" << size << " " << kind.Class << " " << kind.Backend << " "
-          << kind.Setting << ": " << std::fixed << std::setprecision(2) << r.Milliseconds
-          << " ms/frame (median of " << r.Frames << "), " << std::setprecision(0)
-          << r.Points / (r.Milliseconds * 1e-3) << (volume ? " kernels/s" : " splats/s");
-  if (!r.DrawnBy.empty())
-  {
-    summary << ", drawn by " << r.DrawnBy;
-  }
-  if (r.HasCounts)
-  {
-    summary << (volume ? "; projected " : "; rendered ") << r.Counts[0] << ", frustum culled "
-            << r.Counts[1];
-    if (!volume)
-    {
-      summary << ", backface culled " << r.Counts[2] << ", negligible " << r.Counts[3]
-              << ", skipped " << r.Counts[4];
-    }
-    else
-    {
-      summary << ", transparent " << r.Counts[3] << ", invalid or at the near plane "
-              << r.Counts[4];
-    }
-  }
-  if (r.HasResidentGrowth)
-  {
-    summary << "; RSS +" << std::setprecision(1) << r.ResidentGrowth / (1024.0 * 1024.0) << " MB";
-    if (r.Points > 0)
-    {
-      summary << " (" << static_cast<double>(r.ResidentGrowth) / r.Points << " B/splat)";
-    }
-  }
-  return summary.str();
-}
-
-// Renders one scene at every size with every case into `window` and emits a CSV row per case,
-// each size's rows once its peer has run (for the ratio); returns the number of rows.
-int MeasureScene(
-  vtkRenderWindow* window, const Scene& scene, const Options& options, std::ostream& csv)
-{
-  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
-  int rows = 0;
-  for (long long size : options.Sizes)
-  {
-    // The window's own buffers at this size, before any case's memory is measured.
-    renderer->RemoveAllViewProps();
-    window->SetSize(static_cast<int>(size), static_cast<int>(size));
-    window->Render();
-    window->WaitForCompletion();
-    std::vector<CaseResult> results;
-    double peerMilliseconds = 0.0;
-    for (const MapperKind& kind : scene.Kinds)
-    {
-      if (kind.ClosedOnly && !scene.Closed)
-      {
-        continue;
-      }
-      std::cerr << "splat_bench: " << scene.Name << ", " << size << "x" << size << ", "
-                << kind.Class << " (" << kind.Backend << ", " << kind.Setting << ") ...\n";
-      results.push_back(MeasureCase(window, kind, scene, options, size));
-      std::cerr << Summary(scene.Name, size, results.back()) << "\n";
-      if (kind.Name == scene.Peer)
-      {
-        peerMilliseconds = results.back().Milliseconds;
-      }
-    }
-    for (const CaseResult& r : results)
-    {
-      const std::string row = CsvRow(scene.Name, size, r, peerMilliseconds);
-      std::cout << row << std::flush;
-      csv << row << std::flush;
-      ++rows;
-    }
-  }
-  return rows;
 }
 
 int Run(const Options& options)
