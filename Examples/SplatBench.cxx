@@ -8,6 +8,7 @@
 // and the ratio of the peer's time to the case's.
 // Run `splat_bench --help` for the options.
 #include "SplatBenchCases.h"
+#include "SplatCaptureScene.h"
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
 #include "SplatVolumeScenes.h"
@@ -84,7 +85,10 @@ rendered = kernels projected (a kernel counts once per list that splats it), fru
 backface_culled empty, negligible = kernels of zero opacity (not in the lists), skipped =
 invalid kernels plus those reaching the near plane; the volume data is made once per scene,
 so bytes_per_splat is the mapper's memory (kernel lists, buffers) per kernel. Volume cases time
-at most 3 frames, the volume marked modified before each.
+at most 3 frames, the volume marked modified before each. 3dgs is a generated 3D Gaussian
+Splatting capture of --kernels Gaussians flattened onto a torus (SplatCaptureScene.h: "Scale",
+"Rotation", peak "Opacity" and spherical harmonics of degree 3, evaluated for the camera every
+frame); it has no peer (VTK draws no view-dependent Gaussians), so its peer_ratio is empty.
 peer_ratio is the peer's ms_per_frame at the same scene, points and size divided by the row's
 (above 1: faster than the peer): vtkPointGaussianMapper for surfaces,
 vtkFixedPointVolumeRayCastMapper for volumes. drawn_by is the backend that drew the splat
@@ -94,10 +98,10 @@ the current resident set size (/proc/self/statm) after the case's frames minus t
 its data was built, divided by the number of points. A one-line summary per case goes to stderr.
 
 Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separated):
-  --scenes LIST        sphere, bunny, mri, gaussians (default all; bunny and mri are skipped
-                       when absent)
+  --scenes LIST        sphere, bunny, mri, gaussians, 3dgs (default all; bunny and mri are
+                       skipped when absent)
   --points LIST        sphere point counts (default 100000,1000000,5000000)
-  --kernels N          Gaussians of the gaussians scene (default 1000000)
+  --kernels N          Gaussians of the gaussians and 3dgs scenes (default 1000000)
   --grid N             grid points per axis of the gaussians resampled for the ray casters
                        (default 256)
   --mri-shrink N       the MRI's every N-th voxel per axis, each the mean of its N^3 block
@@ -113,7 +117,7 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
   --budget SECONDS     time a case's frames within this many seconds: after the first timed
                        frame, another is timed only while the elapsed time plus the last
                        frame's stays within the budget (default 10)
-  --quick              smoke run: 20000 sphere points, 20000 Gaussians on a 64^3 grid, the MRI
+  --quick              smoke run: 20000 sphere points, 20000 Gaussians (a 64^3 grid), the MRI
                        shrunk by 2, 256x256, 2 frames
   --output FILE        CSV file, also written to stdout (default output/bench/bench.csv)
   --image-dir DIR      also write each case's last frame as a PNG into DIR
@@ -155,7 +159,7 @@ Options ParseCommandLine(int argc, char* argv[])
   const std::map<std::string, splatexample::OptionHandler> handlers = {
     { "--scenes",
       [&](const std::string& name, const std::string& value) {
-        options.Scenes = SplitList(name, value, { "sphere", "bunny", "mri", "gaussians" });
+        options.Scenes = SplitList(name, value, { "sphere", "bunny", "mri", "gaussians", "3dgs" });
       } },
     { "--points",
       [&](const std::string& name, const std::string& value)
@@ -331,8 +335,9 @@ Scene SurfaceScene(const std::string& name, bool closed,
 // A volume scene: vtkVolumeSplatMapper draws `kernels` (image data or a point set of Gaussians)
 // with `property`; the ray casters draw the grid of makeGrid with its property (made on first
 // use, then kept: resampling the Gaussians takes a while), sampled along their rays at the
-// grid's spacing; vtkGPUVolumeRayCastMapper only where `gpuRayCaster`. The data is made once,
-// outside the cases: bytes_per_splat counts the mapper and its frames.
+// grid's spacing; vtkGPUVolumeRayCastMapper only where `gpuRayCaster`; without makeGrid, no ray
+// caster and no peer. The data is made once, outside the cases: bytes_per_splat counts the
+// mapper and its frames.
 Scene VolumeScene(const std::string& name, vtkDataSet* kernels, vtkVolumeProperty* property,
   const std::function<splatexample::ResampledVolume()>& makeGrid,
   const std::function<void(vtkRenderer*)>& place, bool gpuRayCaster, const Options& options)
@@ -340,13 +345,14 @@ Scene VolumeScene(const std::string& name, vtkDataSet* kernels, vtkVolumePropert
   Scene scene;
   scene.Name = name;
   scene.Kinds = VolumeKinds(options);
-  if (!gpuRayCaster)
+  const auto drawn = [&](const MapperKind& kind)
   {
-    scene.Kinds.erase(std::remove_if(scene.Kinds.begin(), scene.Kinds.end(),
-                        [](const MapperKind& kind) { return kind.Name == "gpuraycast"; }),
-      scene.Kinds.end());
-  }
-  scene.Peer = "fixedpoint";
+    return kind.Name == "splat" ||
+      (makeGrid && (kind.Name == "fixedpoint" || (kind.Name == "gpuraycast" && gpuRayCaster)));
+  };
+  scene.Kinds.erase(
+    std::remove_if(scene.Kinds.begin(), scene.Kinds.end(), std::not_fn(drawn)), scene.Kinds.end());
+  scene.Peer = makeGrid ? "fixedpoint" : "";
   scene.Frames = 3; // TestVolumeSplatCrossRenderer's three frames after the first
   vtkSmartPointer<vtkDataSet> data = kernels;
   vtkSmartPointer<vtkVolumeProperty> splatProperty = property;
@@ -457,6 +463,16 @@ int Run(const Options& options)
     rows += MeasureScene(window,
       VolumeScene("gaussians", kernels, property, resample, splatexample::PlaceGaussiansCamera,
         false, options),
+      options, csv);
+  }
+  if (wants("3dgs"))
+  {
+    vtkSmartPointer<vtkPolyData> capture =
+      splatexample::SyntheticCapture(static_cast<vtkIdType>(options.Kernels), 3);
+    // The kernels' own colors and peak opacities: the transfer functions are not used.
+    vtkNew<vtkVolumeProperty> property;
+    rows += MeasureScene(window,
+      VolumeScene("3dgs", capture, property, {}, splatexample::PlaceCaptureCamera, false, options),
       options, csv);
   }
   std::cerr << "splat_bench: " << rows << " rows; CSV written to "

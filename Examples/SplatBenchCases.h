@@ -44,7 +44,7 @@ namespace splatbench
 {
 struct Options
 {
-  std::vector<std::string> Scenes = { "sphere", "bunny", "mri", "gaussians" };
+  std::vector<std::string> Scenes = { "sphere", "bunny", "mri", "gaussians", "3dgs" };
   std::vector<long long> Points = { 100000, 1000000, 5000000 };
   long long Kernels = 1000000;
   long long Grid = 256;
