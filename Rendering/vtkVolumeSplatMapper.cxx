@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkVolumeSplatMapper.h"
 
+#include "SplatSphericalHarmonics.h"
 #include "SplatVolumeKernel.h"
 #include "vtkOpenGLImageDepthCompositor.h"
 #include "vtkOpenGLVolumeSplatRasterizer.h"
@@ -45,6 +46,8 @@ struct vtkVolumeSplatMapper::KernelArrays
   std::vector<float> Colors;
   std::vector<float> Strengths;
   std::vector<float> Normals; // shaded kernels only
+  std::vector<float> SphericalHarmonics; // view-dependent colors only
+  int SphericalHarmonicsDegree = 0;
   std::vector<vtkIdType> GridIds; // image data only
   vtkVolumeSplatRasterizer::Kernels View;
   vtkVolumeProperty* Property = nullptr; // the property they were built with (not dereferenced)
@@ -53,7 +56,8 @@ struct vtkVolumeSplatMapper::KernelArrays
 
   void Clear()
   {
-    for (auto* v : { &this->Covariances, &this->Colors, &this->Strengths, &this->Normals })
+    for (auto* v : { &this->Covariances, &this->Colors, &this->Strengths, &this->Normals,
+           &this->SphericalHarmonics })
     {
       v->clear();
     }
@@ -72,6 +76,9 @@ struct vtkVolumeSplatMapper::KernelArrays
     this->View.Strengths = this->Strengths.data();
     this->View.GridIds = this->GridIds.empty() ? nullptr : this->GridIds.data();
     this->View.Normals = this->Normals.empty() ? nullptr : this->Normals.data();
+    this->View.SphericalHarmonics =
+      this->SphericalHarmonics.empty() ? nullptr : this->SphericalHarmonics.data();
+    this->View.SphericalHarmonicsDegree = this->SphericalHarmonicsDegree;
   }
 };
 
@@ -232,6 +239,7 @@ vtkVolumeSplatMapper::vtkVolumeSplatMapper()
   this->SetColorArrayName("Color");
   this->SetOpacityArrayName("Opacity");
   this->SetSampleVolumeArrayName("SampleVolume");
+  this->SetSphericalHarmonicsArrayName("SphericalHarmonics");
 }
 
 //------------------------------------------------------------------------------
@@ -243,6 +251,7 @@ vtkVolumeSplatMapper::~vtkVolumeSplatMapper()
   this->SetColorArrayName(nullptr);
   this->SetOpacityArrayName(nullptr);
   this->SetSampleVolumeArrayName(nullptr);
+  this->SetSphericalHarmonicsArrayName(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -291,6 +300,24 @@ void vtkVolumeSplatMapper::SetCutoff(double cutoff)
 double vtkVolumeSplatMapper::GetCutoff()
 {
   return this->Rasterizer->GetCutoff();
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatMapper::SetMaximumSphericalHarmonicsDegree(int degree)
+{
+  // Not a kernel setting: the lists stay, the colors are evaluated per frame.
+  const int old = this->Rasterizer->GetMaximumSphericalHarmonicsDegree();
+  this->Rasterizer->SetMaximumSphericalHarmonicsDegree(degree);
+  if (this->Rasterizer->GetMaximumSphericalHarmonicsDegree() != old)
+  {
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkVolumeSplatMapper::GetMaximumSphericalHarmonicsDegree()
+{
+  return this->Rasterizer->GetMaximumSphericalHarmonicsDegree();
 }
 
 //------------------------------------------------------------------------------
@@ -347,7 +374,7 @@ std::string vtkVolumeSplatMapper::KernelSettings()
   std::ostringstream settings;
   for (const char* name : { this->CovarianceArrayName, this->ScaleArrayName,
          this->RotationArrayName, this->ColorArrayName, this->OpacityArrayName,
-         this->SampleVolumeArrayName, this->ArrayName })
+         this->SampleVolumeArrayName, this->SphericalHarmonicsArrayName, this->ArrayName })
   {
     settings << (name ? name : "") << '\n';
   }
@@ -401,8 +428,9 @@ bool vtkVolumeSplatMapper::UpdateKernels(vtkVolumeProperty* property)
   {
     vtkWarningMacro(<< this->NumberOfInvalidKernels
                     << " kernels skipped: non-finite position, scalar, covariance, scale, "
-                       "rotation or opacity, zero rotation quaternion, or a covariance that is "
-                       "not positive semi-definite.");
+                       "rotation or opacity, spherical-harmonic coefficients not finite or "
+                       "beyond +-65504, zero rotation quaternion, or a covariance that is not "
+                       "positive semi-definite.");
   }
   return ok;
 }
@@ -543,6 +571,21 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
   colors = colors ? colors : ArrayOf(input, this->ColorArrayName, 4);
   vtkDataArray* opacities = ArrayOf(input, this->OpacityArrayName, 1);
   vtkDataArray* sampleVolumes = ArrayOf(input, this->SampleVolumeArrayName, 1);
+  vtkDataArray* harmonics = this->SphericalHarmonicsArrayName
+    ? input->GetPointData()->GetArray(this->SphericalHarmonicsArrayName)
+    : nullptr;
+  const int degree =
+    harmonics ? splat::SphericalHarmonicsDegreeOf(harmonics->GetNumberOfComponents()) : -1;
+  if (harmonics && degree < 0)
+  {
+    vtkErrorMacro("The spherical-harmonics array '"
+      << this->SphericalHarmonicsArrayName << "' has " << harmonics->GetNumberOfComponents()
+      << " components, not 3 (degree + 1)^2 for a degree of 0 to 3 (3, 12, 27 or 48); it is "
+         "ignored.");
+    harmonics = nullptr;
+  }
+  // View-dependent colors take precedence over the color array and the transfer function.
+  colors = harmonics ? nullptr : colors;
   vtkDataArray* normals = nullptr;
   if (property->GetShade(0))
   {
@@ -558,10 +601,11 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
   vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, this->ScalarMode,
     this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
   scalars = cellFlag == 0 ? scalars : nullptr;
-  if ((!colors || !opacities) && !scalars)
+  if ((!(colors || harmonics) || !opacities) && !scalars)
   {
     vtkErrorMacro("vtkVolumeSplatMapper needs point scalars for the transfer functions, or a "
-                  "color array and an opacity array, on its point set input.");
+                  "color (or spherical-harmonics) array and an opacity array, on its point set "
+                  "input.");
     return false;
   }
   std::unique_ptr<TransferTables> tables(scalars ? new TransferTables(property, scalars) : nullptr);
@@ -573,6 +617,11 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
   k.Covariances.reserve(6 * n);
   k.Strengths.reserve(n);
   k.Normals.reserve(normals ? 3 * n : 0);
+  const int coefficientCount = harmonics ? harmonics->GetNumberOfComponents() : 0;
+  k.SphericalHarmonics.reserve(coefficientCount * n);
+  k.SphericalHarmonicsDegree = std::max(degree, 0);
+  std::vector<double> tuple(coefficientCount);
+  std::vector<float> coefficients(coefficientCount);
   for (vtkIdType i = 0; i < n; ++i)
   {
     if (i % 65536 == 0)
@@ -625,7 +674,19 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
       strength = tables->Extinction[entry] * volume;
     }
     double rgb[4] = { 1.0, 1.0, 1.0, 1.0 };
-    if (colors)
+    if (harmonics)
+    {
+      // Within the half-float range of the OpenGL backend's buffer (it also keeps the sums
+      // finite); the Colors hold the degree-0 (view-independent) color.
+      harmonics->GetTuple(i, tuple.data());
+      valid = valid &&
+        std::all_of(tuple.begin(), tuple.end(), [](double c) { return std::abs(c) <= 65504.0; });
+      std::copy(tuple.begin(), tuple.end(), coefficients.begin());
+      const glm::vec3 base =
+        splat::SphericalHarmonicsColor(coefficients.data(), 0, glm::vec3(0.0f));
+      std::copy_n(&base.x, 3, rgb);
+    }
+    else if (colors)
     {
       colors->GetTuple(i, rgb);
       valid = valid && IsFinite(rgb, 3);
@@ -666,6 +727,8 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
         k.Normals.push_back(finite ? static_cast<float>(normal[c]) : 0.0f);
       }
     }
+    k.SphericalHarmonics.insert(
+      k.SphericalHarmonics.end(), coefficients.begin(), coefficients.end());
   }
   this->UpdateProgress(1.0);
   k.View.PeakOpacity = opacities != nullptr;
@@ -828,6 +891,10 @@ void vtkVolumeSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ColorArrayName: " << name(this->ColorArrayName) << "\n";
   os << indent << "OpacityArrayName: " << name(this->OpacityArrayName) << "\n";
   os << indent << "SampleVolumeArrayName: " << name(this->SampleVolumeArrayName) << "\n";
+  os << indent << "SphericalHarmonicsArrayName: " << name(this->SphericalHarmonicsArrayName)
+     << "\n";
+  os << indent << "MaximumSphericalHarmonicsDegree: " << this->GetMaximumSphericalHarmonicsDegree()
+     << "\n";
   os << indent << "NumberOfKernels: " << this->NumberOfKernels << "\n";
   os << indent << "NumberOfTransparentKernels: " << this->NumberOfTransparentKernels << "\n";
   os << indent << "NumberOfInvalidKernels: " << this->NumberOfInvalidKernels << "\n";

@@ -34,6 +34,19 @@
  * The scalars are selected as for VTK's volume mappers (SetScalarMode, SelectScalarArray); the
  * first component is used.
  *
+ * View-dependent colors (3D Gaussian Splatting): a point set's float array of spherical-harmonic
+ * coefficients (SphericalHarmonicsArrayName, default "SphericalHarmonics"), 3 (d + 1)^2
+ * components for degree d in 0..3 (3, 12, 27, 48; another count is an error and the array is
+ * ignored), coefficient-major with RGB interleaved (k0.r, k0.g, k0.b, k1.r, ...) in the basis
+ * order, signs and constants of the 3DGS reference (SplatSphericalHarmonics.h), takes precedence
+ * over the color array and the color transfer function. Each frame, each kernel's color is
+ * max(0, 0.5 + sum_k Y_k(d) c_k) clamped to 1, with d the direction from the camera position to
+ * the kernel's center in the data's coordinates (through the inverse of the vtkVolume's matrix;
+ * the view axis in a parallel projection), up to MaximumSphericalHarmonicsDegree; then shaded
+ * like any color. The CPU backend evaluates it in parallel when the view point moved; the
+ * OpenGL backend in the vertex shader from a half-float buffer of the coefficients. Image data
+ * ignores the array.
+ *
  * Optical model: the scalar opacity transfer function gives alpha per ScalarOpacityUnitDistance
  * as for VTK's ray casters, i.e. the extinction tau = -ln(1 - alpha) / unitDistance (alpha
  * clamped to 0.999). A voxel's kernel carries tau times the voxel volume, so the kernels
@@ -58,7 +71,9 @@
  * cutoff ellipsoid reaches the near plane or lies behind the eye, and kernels outside the view
  * frustum, are skipped. All of it is counted (GetListTraversed, GetNumberOfProjectedKernels,
  * GetNumberOf*Kernels). Kernels with a non-finite position, covariance, scale or rotation, a zero
- * quaternion or a covariance that is not positive semi-definite are skipped and counted.
+ * quaternion, a covariance that is not positive semi-definite, or spherical-harmonic
+ * coefficients that are not finite or exceed the half-float range (+-65504) are skipped and
+ * counted.
  *
  * The volume is drawn after the opaque geometry: each pixel's integration stops at the opaque
  * scene's depth (kernels whose center lies behind it are left out of that pixel), and the
@@ -181,6 +196,19 @@ public:
 
   ///@{
   /**
+   * View-dependent colors of kernel sets (see the class comment): the point-data array of
+   * spherical-harmonic coefficients (default "SphericalHarmonics"), and the highest degree
+   * evaluated, 0 to 3 (default 3; 0 gives the view-independent degree-0 colors). Changing the
+   * degree does not rebuild the kernels or their lists.
+   */
+  vtkSetStringMacro(SphericalHarmonicsArrayName);
+  vtkGetStringMacro(SphericalHarmonicsArrayName);
+  void SetMaximumSphericalHarmonicsDegree(int degree);
+  int GetMaximumSphericalHarmonicsDegree();
+  ///@}
+
+  ///@{
+  /**
    * What the last render did (paper 003, table 1): whether list `axis` (0, 1, 2 for X, Y, Z;
    * 3 for the per-frame depth sort) was traversed and how many kernels it splatted, and all
    * lists together (-1: not counted by the OpenGL backend).
@@ -259,6 +287,7 @@ protected:
   char* ColorArrayName = nullptr;
   char* OpacityArrayName = nullptr;
   char* SampleVolumeArrayName = nullptr;
+  char* SphericalHarmonicsArrayName = nullptr;
   vtkIdType NumberOfKernels = 0;
   vtkIdType NumberOfTransparentKernels = 0;
   vtkIdType NumberOfInvalidKernels = 0;

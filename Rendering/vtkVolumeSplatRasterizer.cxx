@@ -2,6 +2,7 @@
 #include "vtkVolumeSplatRasterizer.h"
 
 #include "SplatExponential.h"
+#include "SplatSphericalHarmonics.h"
 #include "SplatVolumeKernel.h"
 
 #include "vtkObjectFactory.h"
@@ -82,6 +83,11 @@ struct vtkVolumeSplatRasterizer::Internals
   std::array<std::vector<vtkIdType>, 4> Offsets;
   std::array<std::vector<BinnedKernel>, 4> Bins;
   std::array<std::vector<glm::vec4>, 4> Buffers;
+  // The kernels' spherical-harmonic colors for ViewKey, the view point (w = 1) or the view
+  // axis (w = 0) in model coordinates, up to ViewDegree (0: not evaluated).
+  std::vector<float> ViewColors;
+  glm::dvec4 ViewKey{ 0.0 };
+  int ViewDegree = 0;
 };
 
 namespace
@@ -247,6 +253,7 @@ vtkVolumeSplatRasterizer::~vtkVolumeSplatRasterizer()
 void vtkVolumeSplatRasterizer::SetKernels(const Kernels& kernels)
 {
   this->Input = kernels;
+  this->Internal->ViewDegree = 0;
   for (auto& list : this->Lists)
   {
     list.clear();
@@ -481,6 +488,8 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
   const double compensation = splat::TruncationCompensation(cutoff);
   // Normals go to eye coordinates by the inverse transpose.
   const glm::mat3 normalToEye(glm::transpose(glm::inverse(linear)));
+  const float* viewColors = this->UpdateViewColors(camera, rays.Perspective);
+  const float* colors = viewColors ? viewColors : input.Colors;
   vtkSMPTools::For(0, static_cast<vtkIdType>(input.Count),
     [&](vtkIdType begin, vtkIdType end)
     {
@@ -527,7 +536,7 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
         s.Amplitude = static_cast<float>(
           input.PeakOpacity ? strength : strength * footprint.Amplitude * compensation);
         s.Depth = static_cast<float>(-e.z);
-        glm::vec3 color(input.Colors[3 * i], input.Colors[3 * i + 1], input.Colors[3 * i + 2]);
+        glm::vec3 color(colors[3 * i], colors[3 * i + 1], colors[3 * i + 2]);
         if (input.Normals)
         {
           color = this->ShadeKernel(
@@ -763,6 +772,47 @@ glm::vec3 vtkVolumeSplatRasterizer::ShadeKernel(const glm::vec3& color, const gl
 }
 
 //------------------------------------------------------------------------------
+const float* vtkVolumeSplatRasterizer::UpdateViewColors(const Camera& camera, bool perspective)
+{
+  const Kernels& input = this->Input;
+  const int degree = input.SphericalHarmonics
+    ? std::min(input.SphericalHarmonicsDegree, this->MaximumSphericalHarmonicsDegree)
+    : 0;
+  if (degree == 0)
+  {
+    return nullptr; // the Colors are the degree-0 colors
+  }
+  const glm::dmat4 eyeToModel = glm::inverse(camera.ModelToEye);
+  const glm::dvec4 key = perspective
+    ? eyeToModel * glm::dvec4(0.0, 0.0, 0.0, 1.0)
+    : glm::dvec4(glm::normalize(glm::dvec3(eyeToModel * glm::dvec4(0.0, 0.0, -1.0, 0.0))), 0.0);
+  Internals& internal = *this->Internal;
+  if (degree == internal.ViewDegree && key == internal.ViewKey)
+  {
+    return internal.ViewColors.data();
+  }
+  internal.ViewColors.resize(3 * input.Count);
+  const int stride = 3 * splat::SphericalHarmonicsCoefficients(input.SphericalHarmonicsDegree);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(input.Count),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const double* p = input.Positions + 3 * i;
+        const glm::vec3 direction = perspective
+          ? glm::vec3(glm::dvec3(p[0], p[1], p[2]) - glm::dvec3(key))
+          : glm::vec3(key);
+        const glm::vec3 color = splat::SphericalHarmonicsColor(
+          input.SphericalHarmonics + stride * i, degree, direction);
+        std::copy_n(&color.x, 3, internal.ViewColors.begin() + 3 * i);
+      }
+    });
+  internal.ViewDegree = degree;
+  internal.ViewKey = key;
+  return internal.ViewColors.data();
+}
+
+//------------------------------------------------------------------------------
 void vtkVolumeSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -771,6 +821,10 @@ void vtkVolumeSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Cutoff: " << this->Cutoff << "\n";
   os << indent << "Kernels: " << this->Input.Count << "\n";
   os << indent << "Shaded: " << (this->Input.Normals != nullptr) << "\n";
+  os << indent << "SphericalHarmonicsDegree: "
+     << (this->Input.SphericalHarmonics ? this->Input.SphericalHarmonicsDegree : -1) << "\n";
+  os << indent << "MaximumSphericalHarmonicsDegree: " << this->MaximumSphericalHarmonicsDegree
+     << "\n";
   os << indent << "Lights: " << this->Lights.size() << "\n";
   os << indent << "TwoSidedLighting: " << this->TwoSidedLighting << "\n";
   for (int list = 0; list <= DepthList; ++list)

@@ -99,6 +99,15 @@ public:
   vtkGetMacro(Cutoff, double);
   ///@}
 
+  ///@{
+  /**
+   * The highest spherical-harmonic degree evaluated for kernels with SphericalHarmonics, in
+   * [0, 3]; 0 gives their view-independent Colors. Default 3.
+   */
+  vtkSetClampMacro(MaximumSphericalHarmonicsDegree, int, 0, 3);
+  vtkGetMacro(MaximumSphericalHarmonicsDegree, int);
+  ///@}
+
   /**
    * The camera: model-to-eye and eye-to-clip (projection) matrices and the viewport in pixels.
    */
@@ -124,6 +133,11 @@ public:
    *   whose lists are sorted by position.
    * - Normals: for shading, a unit normal per kernel in model coordinates (zero where there is
    *   none, which gets the ambient term only); null for unshaded kernels, which emit Colors.
+   * - SphericalHarmonics: for view-dependent colors, 3 (SphericalHarmonicsDegree + 1)^2 floats
+   *   per kernel (SplatSphericalHarmonics.h), evaluated up to MaximumSphericalHarmonicsDegree
+   *   for the direction from the eye to the kernel (the view axis in a parallel projection) in
+   *   model coordinates, in place of Colors, which then hold the degree-0 colors; null for
+   *   none.
    */
   struct Kernels
   {
@@ -138,6 +152,8 @@ public:
     const vtkIdType* GridIds = nullptr;
     glm::ivec3 GridDimensions{ 0 };
     const float* Normals = nullptr;
+    const float* SphericalHarmonics = nullptr;
+    int SphericalHarmonicsDegree = 0;
   };
 
   /**
@@ -220,10 +236,14 @@ protected:
   /// The color of a kernel at eye position `eye` lit with its model normal (SetLighting).
   glm::vec3 ShadeKernel(const glm::vec3& color, const glm::vec3& eye,
     const glm::mat3& normalToEye, const float* modelNormal, bool parallelProjection) const;
+  /// The kernels' spherical-harmonic colors seen from `camera`: evaluated again only when the
+  /// view point (or axis), the degree or the kernels changed. Null without harmonics.
+  const float* UpdateViewColors(const Camera& camera, bool perspective);
 
   int OrderingMode = BLENDED;
   double BlendThreshold = 0.85;
   double Cutoff;
+  int MaximumSphericalHarmonicsDegree = 3;
 
   Kernels Input;
   std::array<std::vector<vtkIdType>, 4> Lists;
