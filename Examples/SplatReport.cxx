@@ -23,6 +23,9 @@
 #include "SplatCheckerboardScene.h"
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
+#include "SplatReportCases.h"
+#include "SplatReportImages.h"
+#include "SplatReportOutput.h"
 #include "SplatVolumeReference.h"
 #include "SplatVolumeScenes.h"
 #include "vtkSplatBackend.h"
@@ -30,26 +33,11 @@
 #include "vtkSurfelGenerator.h"
 
 #include "vtkActor.h"
-#include "vtkAxis.h"
 #include "vtkCamera.h"
-#include "vtkChart.h"
-#include "vtkChartLegend.h"
-#include "vtkChartMatrix.h"
 #include "vtkCleanPolyData.h"
-#include "vtkContextScene.h"
-#include "vtkContextView.h"
-#include "vtkFloatArray.h"
-#include "vtkImageCast.h"
 #include "vtkImageData.h"
-#include "vtkImageGaussianSmooth.h"
-#include "vtkImageShrink3D.h"
 #include "vtkNew.h"
 #include "vtkPLYReader.h"
-#include "vtkPointData.h"
-#include "vtkPen.h"
-#include "vtkPlot.h"
-#include "vtkPlotPoints.h"
-#include "vtkPointGaussianMapper.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkPolyDataNormals.h"
@@ -59,13 +47,9 @@
 #include "vtkRendererCollection.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
-#include "vtkTable.h"
-#include "vtkTextProperty.h"
-#include "vtkVector.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtkVolumeSplatMapper.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <vtksys/SystemTools.hxx>
 
@@ -91,6 +75,7 @@
 
 namespace
 {
+using namespace splatreport;
 using splatexample::CaptureWindow;
 using splatexample::Checkerboard;
 using splatexample::CheckerboardReferences;
@@ -161,24 +146,6 @@ source tree); SPLAT_OUTPUT_DIR (see --output-dir); SPLAT_MRI_FILE, the MRI (defa
 /usr/share/mricron/templates/ch2.nii.gz).
 )";
 
-struct Options
-{
-  std::string OutputDir;
-  std::vector<std::string> Scenes = { "checkerboard", "bunny", "mri", "gaussians" };
-  std::vector<std::string> Backends = { "cpu", "opengl" };
-  std::vector<std::string> VolumeBackends = { "cpu" }; // --backends sets both
-  int VolumeSize = 256;
-  int MriShrink = 2;
-  long long Kernels = 2000;
-  int Grid = 128;
-  int Width = 512;
-  int Height = 384;
-  int Rounds = 4;
-  int Frames = 3;
-  double Budget = 3.0;
-  long long Points = 1000000;
-  int Samples = 16;
-};
 
 // The handler of an option taking a whole number from `low` to `high` into `target`.
 template <typename T>
@@ -249,386 +216,6 @@ Options ParseCommandLine(int argc, char* argv[])
 }
 
 //------------------------------------------------------------------------------------------------
-const char* FilterModeName(int mode)
-{
-  switch (mode)
-  {
-    case vtkSurfaceSplatMapper::EWA:
-      return "EWA";
-    case vtkSurfaceSplatMapper::CIRCULAR:
-      return "circular";
-    case vtkSurfaceSplatMapper::UNFILTERED:
-      return "unfiltered";
-    default:
-      return "?";
-  }
-}
-
-// The default mapper's settings in words, e.g. "EWA, cutoff 1, 3 layers, edge AA on".
-std::string DefaultSettingDescription()
-{
-  vtkNew<vtkSurfaceSplatMapper> mapper;
-  std::ostringstream text;
-  const int layers = mapper->GetNumberOfLayers();
-  text << FilterModeName(mapper->GetFilterMode()) << ", cutoff " << mapper->GetCutoff() << ", "
-       << layers << (layers == 1 ? " layer" : " layers") << ", edge AA "
-       << (mapper->GetEdgeAntialiasing() ? "on" : "off");
-  return text.str();
-}
-
-// One quality setting of vtkSurfaceSplatMapper, changed from the default: adding a setting to
-// the report is one entry of SplatSettings().
-struct SplatSetting
-{
-  std::string Family; // the plot's series
-  std::string Name;   // the table's setting column
-  std::function<void(vtkSurfaceSplatMapper*)> Apply;
-  bool OpenGLOnly = false; // the CPU backend would draw its default instead
-};
-
-std::vector<SplatSetting> SplatSettings()
-{
-  std::vector<SplatSetting> settings = {
-    { "cutoff", "cutoff=0.5", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(0.5); } },
-    { "cutoff", "cutoff=2", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(2.0); } },
-    { "cutoff", "cutoff=4", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(4.0); } },
-    { "filter mode", "filter=circular",
-      [](vtkSurfaceSplatMapper* m) { m->SetFilterMode(vtkSurfaceSplatMapper::CIRCULAR); } },
-    { "filter mode", "filter=unfiltered",
-      [](vtkSurfaceSplatMapper* m) { m->SetFilterMode(vtkSurfaceSplatMapper::UNFILTERED); } },
-    { "approximate", "filter=approximate",
-      [](vtkSurfaceSplatMapper* m) { m->SetFilterMode(vtkSurfaceSplatMapper::APPROXIMATE); },
-      true },
-    { "layers", "layers=1", [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayers(1); } },
-    { "layers", "layers=5", [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayers(5); } },
-  };
-  // Edge antialiasing: the opposite of the default.
-  vtkNew<vtkSurfaceSplatMapper> probe;
-  const bool flipped = !probe->GetEdgeAntialiasing();
-  settings.push_back({ "edge AA", flipped ? "edge-aa=on" : "edge-aa=off",
-    [flipped](vtkSurfaceSplatMapper* m) { m->SetEdgeAntialiasing(flipped); } });
-  return settings;
-}
-
-// One rendering to measure.
-// The inputs of a volume scene: vtkVolumeSplatMapper's kernels (image data or a point set) and
-// property, and the ray casters' image data and property.
-struct VolumeInputs
-{
-  vtkDataSet* Kernels;
-  vtkVolumeProperty* Property;
-  vtkImageData* Grid;
-  vtkVolumeProperty* GridProperty;
-};
-
-struct Case
-{
-  std::string Mapper;  // the VTK class
-  std::string Backend; // what draws it
-  std::string Family;  // the plot's series (per backend, see SeriesOf)
-  std::string Setting; // the table's setting column
-  int Threads = 0;     // vtkSMPTools threads; 0 for OpenGL (the driver's own)
-  bool IsDefault = false;
-  // Makes the mapper for the surfels (surface scenes).
-  std::function<vtkSmartPointer<vtkMapper>(vtkPolyData*)> Make;
-  bool Defaults = false; // the mapper's default settings (a thread count or a backend aside)
-  // Makes the mapper for a volume scene's inputs (volume scenes).
-  std::function<vtkSmartPointer<vtkAbstractVolumeMapper>(const VolumeInputs&)> MakeVolume;
-};
-
-// One of our splat mappers (the other rows are peers).
-bool IsOurs(const Case& c)
-{
-  return c.Mapper == "vtkSurfaceSplatMapper" || c.Mapper == "vtkVolumeSplatMapper";
-}
-
-// Our mapper on a backend other than the CPU (whose rows came first and keep their names).
-bool OnOtherBackend(const Case& c)
-{
-  return IsOurs(c) && c.Backend != "CPU";
-}
-
-// The images' name of the mapper: "splat", "splat-opengl", "pointgaussian", "fixedpoint",
-// "gpuraycast" (the CPU backend's names as before the OpenGL backend).
-std::string MapperSlug(const Case& c)
-{
-  if (IsOurs(c))
-  {
-    return OnOtherBackend(c) ? "splat-" + vtksys::SystemTools::LowerCase(c.Backend) : "splat";
-  }
-  return c.Mapper == "vtkPointGaussianMapper" ? "pointgaussian"
-    : c.Mapper == "vtkFixedPointVolumeRayCastMapper" ? "fixedpoint"
-                                                     : "gpuraycast";
-}
-
-// The plot's series of a case: its family of settings, named with the backend when not the CPU.
-std::string SeriesOf(const Case& c)
-{
-  const std::string family = c.Family != "default" ? c.Family
-    : c.Mapper == "vtkVolumeSplatMapper"             ? "default (blended)"
-                                                     : "default (EWA)";
-  return OnOtherBackend(c) ? c.Backend + " " + family : family;
-}
-
-std::vector<Case> Cases(
-  const std::vector<int>& threadCounts, const std::vector<std::string>& backends)
-{
-  const int allThreads = threadCounts.back();
-  const auto splat = [](int backend, const std::function<void(vtkSurfaceSplatMapper*)>& apply) {
-    return [backend, apply](vtkPolyData* surfels) -> vtkSmartPointer<vtkMapper> {
-      vtkNew<vtkSurfaceSplatMapper> mapper;
-      mapper->SetInputData(surfels);
-      mapper->SetRadiusArrayName("Radius");
-      mapper->SetBackend(backend);
-      if (apply)
-      {
-        apply(mapper);
-      }
-      return mapper;
-    };
-  };
-  std::vector<Case> cases;
-  const std::string defaults = "default (" + DefaultSettingDescription() + ")";
-  // The same settings on both backends. The CPU's default row is the report's default and its
-  // thread counts are settings; OpenGL's rows run on the driver's threads (0).
-  for (int backend : splatexample::ChosenSplatBackends(backends))
-  {
-    const std::string name = vtkSplatBackend::GetBackendAsString(backend);
-    const bool cpu = backend == vtkSplatBackend::CPU;
-    if (cpu)
-    {
-      for (auto it = threadCounts.rbegin(); it != threadCounts.rend(); ++it)
-      {
-        cases.push_back({ "vtkSurfaceSplatMapper", name,
-          *it == allThreads ? "default" : "threads", defaults, *it, *it == allThreads,
-          splat(backend, nullptr), true });
-      }
-    }
-    else
-    {
-      cases.push_back({ "vtkSurfaceSplatMapper", name, "default", "default", 0, false,
-        splat(backend, nullptr), true });
-    }
-    for (const SplatSetting& s : SplatSettings())
-    {
-      if (cpu && s.OpenGLOnly)
-      {
-        continue;
-      }
-      cases.push_back({ "vtkSurfaceSplatMapper", name, s.Family, s.Name, cpu ? allThreads : 0,
-        false, splat(backend, s.Apply) });
-    }
-  }
-  // The peer, on the same points: opaque disks of the surfels' radius (the like-for-like surface
-  // rendering), and its default Gaussian blobs with the surfels' variance R^2/2 (sigma R/sqrt 2),
-  // emissive off (alpha-blended, unsorted).
-  const auto disks = [](vtkPolyData* surfels) -> vtkSmartPointer<vtkMapper> {
-    return splatexample::PointGaussianDisks(surfels);
-  };
-  const auto gaussians = [](vtkPolyData* surfels) -> vtkSmartPointer<vtkMapper> {
-    vtkNew<vtkPointGaussianMapper> mapper;
-    mapper->SetInputData(surfels);
-    mapper->SetScaleArray("Radius");
-    mapper->SetScaleFactor(1.0 / std::sqrt(2.0));
-    mapper->EmissiveOff();
-    return mapper;
-  };
-  cases.push_back(
-    { "vtkPointGaussianMapper", "OpenGL", "vtkPointGaussianMapper", "disk", 0, false, disks });
-  cases.push_back({ "vtkPointGaussianMapper", "OpenGL", "vtkPointGaussianMapper", "gaussian", 0,
-    false, gaussians });
-  return cases;
-}
-
-std::string Fixed(double value, int digits);
-int AllThreads();
-
-// The cases of the volume scenes: vtkVolumeSplatMapper in every ordering mode on each backend
-// (the CPU's blended mode is the default), cutoffs other than the default on the CPU, and VTK's
-// ray casters on the grid, sampling their rays every voxel spacing and every quarter of it.
-std::vector<Case> VolumeCases(const std::vector<std::string>& backends)
-{
-  const int allThreads = AllThreads();
-  std::vector<Case> cases;
-  const auto splat = [](int backend, int ordering, double cutoff)
-  {
-    return [=](const VolumeInputs& in) -> vtkSmartPointer<vtkAbstractVolumeMapper>
-    { return splatexample::VolumeSplat(in.Kernels, backend, ordering, cutoff); };
-  };
-  vtkNew<vtkVolumeSplatMapper> probe;
-  const double defaultCutoff = probe->GetCutoff();
-  for (int backend : splatexample::ChosenSplatBackends(backends))
-  {
-    const std::string name = vtkSplatBackend::GetBackendAsString(backend);
-    const bool cpu = backend == vtkSplatBackend::CPU;
-    for (int mode : splatexample::OrderingModes())
-    {
-      const bool defaults = mode == probe->GetOrderingMode();
-      Case c{ "vtkVolumeSplatMapper", name, defaults ? "default" : "ordering",
-        defaults ? "default (" + std::string(splatexample::OrderingModeName(mode)) + ", cutoff " +
-            Fixed(defaultCutoff, 1) + ")"
-                 : splatexample::OrderingModeName(mode),
-        cpu ? allThreads : 0, cpu && defaults, nullptr, defaults };
-      c.MakeVolume = splat(backend, mode, 0.0);
-      cases.push_back(c);
-    }
-    if (cpu)
-    {
-      for (double cutoff : { 2.0, 8.0 })
-      {
-        Case c{ "vtkVolumeSplatMapper", name, "cutoff", "cutoff=" + Fixed(cutoff, 0), allThreads };
-        c.MakeVolume = splat(backend, probe->GetOrderingMode(), cutoff);
-        cases.push_back(c);
-      }
-    }
-  }
-  for (bool gpu : { false, true })
-  {
-    for (double fraction : { 1.0, 0.25 })
-    {
-      if (gpu && fraction != 1.0)
-      {
-        continue; // one row: under llvmpipe its time is the CPU's anyway
-      }
-      const std::string mapper =
-        gpu ? "vtkGPUVolumeRayCastMapper" : "vtkFixedPointVolumeRayCastMapper";
-      Case c{ mapper, gpu ? "OpenGL" : "CPU", mapper,
-        fraction == 1.0 ? "sample=1 voxel" : "sample=" + Fixed(fraction, 2) + " voxel",
-        gpu ? 0 : allThreads };
-      c.MakeVolume =
-        [gpu, fraction](const VolumeInputs& in) -> vtkSmartPointer<vtkAbstractVolumeMapper>
-      {
-        return splatexample::RayCaster(
-          in.Grid, gpu, fraction * splatexample::SmallestSpacing(in.Grid));
-      };
-      cases.push_back(c);
-    }
-  }
-  return cases;
-}
-
-//------------------------------------------------------------------------------------------------
-// Images: OpenImageIO ImageBufs of float RGB in [0,1], top row first.
-
-// A float RGB vtkImageData (rows from the bottom) times `scale` as an image (rows from the top).
-OIIO::ImageBuf ToImageBuf(vtkImageData* image, float scale)
-{
-  int dims[3];
-  image->GetDimensions(dims);
-  OIIO::ImageBuf wrapped(
-    OIIO::ImageSpec(dims[0], dims[1], 3, OIIO::TypeDesc::FLOAT), image->GetScalarPointer());
-  return OIIO::ImageBufAlgo::mul(OIIO::ImageBufAlgo::flip(wrapped), scale);
-}
-
-// The window rendered at `factor` times its size, reduced to its size with two pixel filters:
-// [0] a Gaussian of variance 1 - 1/12 pixels^2 followed by [1]'s box, together a filter of unit
-// variance like EWA's screen low-pass filter; [1] the pixel's box (factor x factor blocks
-// averaged, i.e. factor x factor supersampling).
-std::array<OIIO::ImageBuf, 2> CaptureSupersampled(vtkRenderWindow* window, int factor)
-{
-  const int* size = window->GetSize();
-  const int width = size[0];
-  const int height = size[1];
-  window->SetSize(width * factor, height * factor);
-  window->Render();
-  vtkNew<vtkWindowToImageFilter> capture;
-  capture->SetInput(window);
-  capture->SetInputBufferTypeToRGB();
-  capture->ReadFrontBufferOff();
-  capture->ShouldRerenderOff();
-  vtkNew<vtkImageCast> toFloat;
-  toFloat->SetInputConnection(capture->GetOutputPort());
-  toFloat->SetOutputScalarTypeToFloat();
-  toFloat->Update();
-  window->SetSize(width, height);
-
-  vtkNew<vtkImageGaussianSmooth> gaussian;
-  gaussian->SetInputConnection(toFloat->GetOutputPort());
-  gaussian->SetDimensionality(2);
-  const double sigma = factor * std::sqrt(1.0 - 1.0 / 12.0); // in the large image's pixels
-  gaussian->SetStandardDeviations(sigma, sigma, 0.0);
-  gaussian->SetRadiusFactors(3.0, 3.0, 0.0);
-  std::array<OIIO::ImageBuf, 2> images;
-  for (int f = 0; f < 2; ++f)
-  {
-    vtkNew<vtkImageShrink3D> shrink; // the box filter: each output pixel is a block's mean
-    shrink->SetInputConnection(f == 0 ? gaussian->GetOutputPort() : toFloat->GetOutputPort());
-    shrink->SetShrinkFactors(factor, factor, 1);
-    shrink->AveragingOn();
-    shrink->Update();
-    vtkImageData* image = shrink->GetOutput();
-    int dims[3];
-    image->GetDimensions(dims);
-    if (dims[0] != width || dims[1] != height)
-    {
-      throw std::runtime_error("the supersampled capture has the wrong size");
-    }
-    images[f] = ToImageBuf(image, 1.0f / 255.0f);
-  }
-  return images;
-}
-
-// A volume scene's reference (RGB floats, rows from the bottom) as [0] itself and [1] filtered
-// like EWA's screen low-pass filter: a Gaussian of unit variance in pixels, truncated at 3 sigma.
-std::array<OIIO::ImageBuf, 2> VolumeReferenceImages(
-  const std::vector<float>& rgb, int width, int height)
-{
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(width, height, 1);
-  vtkNew<vtkFloatArray> pixels;
-  pixels->SetNumberOfComponents(3);
-  pixels->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
-  std::copy(rgb.begin(), rgb.end(), pixels->GetPointer(0));
-  image->GetPointData()->SetScalars(pixels);
-  vtkNew<vtkImageGaussianSmooth> gaussian;
-  gaussian->SetInputData(image);
-  gaussian->SetDimensionality(2);
-  gaussian->SetStandardDeviations(1.0, 1.0, 0.0);
-  gaussian->SetRadiusFactors(3.0, 3.0, 0.0);
-  gaussian->Update();
-  return { ToImageBuf(image, 1.0f), ToImageBuf(gaussian->GetOutput(), 1.0f) };
-}
-
-void WriteImage(const OIIO::ImageBuf& image, const std::string& path)
-{
-  if (!image.write(path, OIIO::TypeDesc::UINT8))
-  {
-    throw std::runtime_error("cannot write '" + path + "': " + image.geterror());
-  }
-}
-
-// Tiles the PNG files (of equal size) `columns` wide into one PNG, like paper 000's figure 8.
-// Files that are absent are left black.
-void WriteMontage(const std::vector<std::string>& files, int columns, const std::string& path)
-{
-  if (files.empty())
-  {
-    return;
-  }
-  OIIO::ImageBuf first(files[0]);
-  if (!first.read(0, 0, true, OIIO::TypeDesc::FLOAT))
-  {
-    return;
-  }
-  const int width = first.spec().width;
-  const int height = first.spec().height;
-  const int rows = (static_cast<int>(files.size()) + columns - 1) / columns;
-  OIIO::ImageBuf montage(
-    OIIO::ImageSpec(columns * width, rows * height, first.nchannels(), OIIO::TypeDesc::FLOAT));
-  OIIO::ImageBufAlgo::zero(montage);
-  for (std::size_t i = 0; i < files.size(); ++i)
-  {
-    OIIO::ImageBuf tile(files[i]);
-    if (tile.read(0, 0, true, OIIO::TypeDesc::FLOAT))
-    {
-      OIIO::ImageBufAlgo::paste(montage, static_cast<int>(i % columns) * width,
-        static_cast<int>(i / columns) * height, 0, 0, tile);
-    }
-  }
-  WriteImage(montage, path);
-}
-
-//------------------------------------------------------------------------------------------------
 // The bunny scene: the mesh with smooth normals, or nullptr when bunny.ply is absent.
 vtkSmartPointer<vtkPolyData> BunnyMesh()
 {
@@ -653,22 +240,6 @@ vtkSmartPointer<vtkPolyData> BunnyMesh()
   return normals->GetOutput();
 }
 
-//------------------------------------------------------------------------------------------------
-// Measuring.
-struct Row
-{
-  std::string Scene;
-  const Case* What;
-  int Threads;
-  double Milliseconds;
-  double Rmse; // against the scene's reference
-  double Psnr;
-  double RmseAlt; // against the reference with the other pixel filter
-  double PsnrAlt;
-  bool Pareto = false;
-  std::string Image;
-  std::string Counts; // what vtkSurfaceSplatMapper says it did in the last frame
-};
 
 // Appends the milliseconds of each timed frame, after a warm-up frame, to `ms`: Frames frames,
 // fewer once the budget is spent (at least one). A volume is marked modified before each frame,
@@ -695,21 +266,7 @@ void TimeFrames(
   }
 }
 
-// vtkSMPTools' thread count before any change: all cores, or VTK_SMP_MAX_THREADS.
-int AllThreads()
-{
-  static const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
-  return threads;
-}
 
-// Sets the SMP thread count (0: AllThreads()); returns the count in effect afterwards. Always
-// explicit: VTK 9.1's TBB backend re-initializes its task arena for any new positive count, but
-// Initialize(0) leaves the last count in place instead of going back to all cores.
-int UseThreads(int threads)
-{
-  vtkSMPTools::Initialize(threads > 0 ? threads : AllThreads());
-  return vtkSMPTools::GetEstimatedNumberOfThreads();
-}
 
 std::string Slug(const std::string& text)
 {
@@ -931,233 +488,6 @@ std::string VolumeReferenceText(const VolumeSceneResult& result, const std::stri
        << "classifying after interpolation, instead of summing Gaussian kernels: their error "
        << "includes that difference of model besides their sampling.";
   return text.str();
-}
-
-//------------------------------------------------------------------------------------------------
-// Output.
-std::string Fixed(double value, int digits)
-{
-  std::ostringstream text;
-  text << std::fixed << std::setprecision(digits) << value;
-  return text.str();
-}
-
-void WriteCsv(const std::vector<Row>& rows, const std::string& path)
-{
-  std::ofstream csv(path);
-  csv << "scene,mapper,backend,setting,threads,ms_per_frame,rmse,psnr,rmse_alt,psnr_alt,"
-         "is_default,pareto,image\n";
-  for (const Row& r : rows)
-  {
-    csv << r.Scene << "," << r.What->Mapper << "," << r.What->Backend << ",\""
-        << (r.What->Defaults ? "default" : r.What->Setting)
-        << "\"," << (r.Threads > 0 ? std::to_string(r.Threads) : "") << ","
-        << Fixed(r.Milliseconds, 2) << "," << Fixed(r.Rmse, 5) << "," << Fixed(r.Psnr, 2) << ","
-        << Fixed(r.RmseAlt, 5) << "," << Fixed(r.PsnrAlt, 2) << ","
-        << (r.What->IsDefault ? 1 : 0) << "," << (r.Pareto ? 1 : 0) << "," << r.Image << "\n";
-  }
-  if (!csv)
-  {
-    throw std::runtime_error("cannot write '" + path + "'");
-  }
-}
-
-std::string MarkdownTable(const std::vector<Row>& rows, const std::string& alternative)
-{
-  std::ostringstream md;
-  md << "| mapper | backend | setting | threads | ms/frame | RMSE | PSNR (dB) | Pareto front | "
-        "RMSE, "
-     << alternative << " |\n"
-     << "|---|---|---|---:|---:|---:|---:|:---:|---:|\n";
-  for (const Row& r : rows)
-  {
-    std::string setting = r.What->Setting;
-    if (r.What->IsDefault)
-    {
-      setting = "**" + setting + "**";
-    }
-    md << "| " << r.What->Mapper << " | " << r.What->Backend << " | " << setting << " | "
-       << (r.Threads > 0 ? std::to_string(r.Threads) : "driver") << " | "
-       << Fixed(r.Milliseconds, 1) << " | " << Fixed(r.Rmse, 4) << " | " << Fixed(r.Psnr, 2)
-       << " | " << (r.Pareto ? "yes" : "") << " | " << Fixed(r.RmseAlt, 4) << " |\n";
-  }
-  md << "\nPareto front (fastest first):";
-  std::vector<const Row*> front;
-  for (const Row& r : rows)
-  {
-    if (r.Pareto)
-    {
-      front.push_back(&r);
-    }
-  }
-  std::sort(front.begin(), front.end(),
-    [](const Row* a, const Row* b) { return a->Milliseconds < b->Milliseconds; });
-  for (std::size_t i = 0; i < front.size(); ++i)
-  {
-    const Row& r = *front[i];
-    // Our mapper's CPU rows unnamed, the others by backend ("OpenGL default") or peer.
-    md << (i ? "; " : " ")
-       << (!IsOurs(*r.What) ? r.What->Mapper + " "
-              : OnOtherBackend(*r.What)              ? r.What->Backend + " "
-                                                     : "")
-       << (r.What->IsDefault ? std::string("the default") : r.What->Setting)
-       << (r.Threads > 0
-              ? ", " + std::to_string(r.Threads) + (r.Threads == 1 ? " thread" : " threads")
-              : "")
-       << " (" << Fixed(r.Milliseconds, 1) << " ms, RMSE " << Fixed(r.Rmse, 4) << ")";
-  }
-  md << ".\n";
-  for (const Row& r : rows)
-  {
-    if (r.What->IsDefault && !r.Counts.empty())
-    {
-      md << "\n" << r.What->Mapper << " with the default setting, last frame: " << r.Counts
-         << ".\n";
-    }
-  }
-  return md.str();
-}
-
-// The plot: RMSE against ms per frame (log scale), one chart per scene (two per row), one point
-// series per family of settings and backend, and the Pareto front as a line. A family's series
-// share a marker and a hue, dark on the CPU and light on OpenGL.
-void WritePlot(const std::vector<std::string>& scenes, const std::vector<Row>& rows,
-  const std::string& path)
-{
-  vtkNew<vtkContextView> view;
-  vtkRenderWindow* window = view->GetRenderWindow();
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  // Two charts per row at most (surface scenes on top, volume scenes below).
-  const int columns = std::min(2, static_cast<int>(scenes.size()));
-  const int chartRows = (static_cast<int>(scenes.size()) + columns - 1) / columns;
-  window->SetSize(640 * columns, 620 * chartRows);
-  view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-  vtkNew<vtkChartMatrix> matrix;
-  matrix->SetSize(vtkVector2i(columns, chartRows));
-  matrix->SetGutter(vtkVector2f(70.0f, 60.0f));
-  view->GetScene()->AddItem(matrix);
-
-  // Tableau's paired colors, after black and gray for the default.
-  const unsigned char palette[][2][3] = { { { 0, 0, 0 }, { 150, 150, 150 } },
-    { { 31, 119, 180 }, { 174, 199, 232 } }, { { 255, 127, 14 }, { 255, 187, 120 } },
-    { { 44, 160, 44 }, { 152, 223, 138 } }, { { 214, 39, 40 }, { 255, 152, 150 } },
-    { { 148, 103, 189 }, { 197, 176, 213 } }, { { 140, 86, 75 }, { 196, 156, 148 } },
-    { { 227, 119, 194 }, { 247, 182, 210 } }, { { 188, 189, 34 }, { 219, 219, 141 } },
-    { { 23, 190, 207 }, { 158, 218, 229 } } };
-  const int markers[] = { vtkPlotPoints::DIAMOND, vtkPlotPoints::CIRCLE, vtkPlotPoints::SQUARE,
-    vtkPlotPoints::PLUS, vtkPlotPoints::CROSS };
-  std::vector<vtkSmartPointer<vtkTable>> tables; // alive until rendered
-
-  for (std::size_t s = 0; s < scenes.size(); ++s)
-  {
-    // The chart matrix counts rows from the bottom.
-    vtkChart* chart = matrix->GetChart(vtkVector2i(
-      static_cast<int>(s) % columns, chartRows - 1 - static_cast<int>(s) / columns));
-    chart->SetTitle(scenes[s] + ": error against time");
-    chart->GetTitleProperties()->SetFontSize(16);
-    chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("ms per frame (log scale)");
-    chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
-    chart->GetAxis(vtkAxis::LEFT)->SetTitle("RMSE against the reference");
-    chart->SetShowLegend(true);
-    chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
-    chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
-
-    std::vector<std::string> families; // of settings, in the order of the rows
-    std::vector<std::string> series;   // their series, per backend
-    std::vector<const Case*> firstCases;
-    std::vector<const Row*> front;
-    for (const Row& r : rows)
-    {
-      if (r.Scene != scenes[s])
-      {
-        continue;
-      }
-      if (std::find(families.begin(), families.end(), r.What->Family) == families.end())
-      {
-        families.push_back(r.What->Family);
-      }
-      if (std::find(series.begin(), series.end(), SeriesOf(*r.What)) == series.end())
-      {
-        series.push_back(SeriesOf(*r.What));
-        firstCases.push_back(r.What);
-      }
-      if (r.Pareto)
-      {
-        front.push_back(&r);
-      }
-    }
-    std::sort(front.begin(), front.end(),
-      [](const Row* a, const Row* b) { return a->Milliseconds < b->Milliseconds; });
-    // Fixed ranges with room at the top for the legend.
-    double lowMs = std::numeric_limits<double>::max(), highMs = 0.0, highRmse = 0.0;
-    for (const Row& r : rows)
-    {
-      if (r.Scene == scenes[s])
-      {
-        lowMs = std::min(lowMs, r.Milliseconds);
-        highMs = std::max(highMs, r.Milliseconds);
-        highRmse = std::max(highRmse, r.Rmse);
-      }
-    }
-    vtkAxis* time = chart->GetAxis(vtkAxis::BOTTOM);
-    time->SetBehavior(vtkAxis::FIXED);
-    time->SetUnscaledRange(std::max(lowMs / 1.3, 1e-3), std::max(highMs * 1.3, 2e-3));
-    vtkAxis* error = chart->GetAxis(vtkAxis::LEFT);
-    error->SetBehavior(vtkAxis::FIXED);
-    error->SetRange(0.0, highRmse > 0.0 ? 2.0 * highRmse : 1.0);
-    if (front.size() > 1)
-    {
-      vtkNew<vtkTable> table;
-      vtkNew<vtkFloatArray> ms, rmse;
-      ms->SetName("ms");
-      rmse->SetName("Pareto front");
-      for (const Row* r : front)
-      {
-        ms->InsertNextValue(static_cast<float>(r->Milliseconds));
-        rmse->InsertNextValue(static_cast<float>(r->Rmse));
-      }
-      table->AddColumn(ms);
-      table->AddColumn(rmse);
-      vtkPlot* line = chart->AddPlot(vtkChart::LINE);
-      line->SetInputData(table, 0, 1);
-      line->SetColor(160, 160, 160, 255);
-      line->SetWidth(1.5f);
-      line->GetPen()->SetLineType(vtkPen::DASH_LINE);
-      line->SetLabel("Pareto front");
-      tables.push_back(table.Get());
-    }
-    for (std::size_t f = 0; f < series.size(); ++f)
-    {
-      vtkNew<vtkTable> table;
-      vtkNew<vtkFloatArray> ms, rmse;
-      ms->SetName("ms");
-      rmse->SetName(series[f].c_str());
-      for (const Row& r : rows)
-      {
-        if (r.Scene == scenes[s] && SeriesOf(*r.What) == series[f])
-        {
-          ms->InsertNextValue(static_cast<float>(r.Milliseconds));
-          rmse->InsertNextValue(static_cast<float>(r.Rmse));
-        }
-      }
-      table->AddColumn(ms);
-      table->AddColumn(rmse);
-      auto* points = vtkPlotPoints::SafeDownCast(chart->AddPlot(vtkChart::POINTS));
-      points->SetInputData(table, 0, 1);
-      const std::size_t family =
-        std::find(families.begin(), families.end(), firstCases[f]->Family) - families.begin();
-      const unsigned char* color = palette[family % (sizeof(palette) / sizeof(palette[0]))]
-                                          [OnOtherBackend(*firstCases[f]) ? 1 : 0];
-      points->SetColor(color[0], color[1], color[2], 255);
-      points->SetMarkerStyle(markers[family % (sizeof(markers) / sizeof(markers[0]))]);
-      points->SetMarkerSize(family == 0 ? 14.0f : 10.0f);
-      points->SetLabel(series[f]);
-      tables.push_back(table.Get());
-    }
-  }
-  view->Render();
-  splatexample::WritePNG(window, path);
 }
 
 int Run(const Options& options)
