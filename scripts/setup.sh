@@ -2,18 +2,25 @@
 # Idempotent set-up of a Debian 12 (bookworm) machine for building and testing Splat.
 #
 #   scripts/setup.sh            install what is missing; does nothing when all is present
-#   SPLAT_DEPS_DIR=DIR          where the python3-paraview package is cached and unpacked
+#   SPLAT_DEPS_DIR=DIR          where the python3-paraview and python3-vtk9 packages are cached,
+#                               and python3-paraview unpacked
 #                               (default: build/deps in the repository; build/ is ignored by git)
 #
 # 1. Installs the missing apt packages (sudo only when not root).
 # 2. ParaView's Python modules: Debian's python3-paraview conflicts with python3-vtk9 (which
-#    libvtk9-dev needs) although their files do not really collide. find_package(ParaView) needs
-#    python3-paraview's files, so the package is downloaded and force-installed with
-#    dpkg --force-conflicts --force-overwrite, and a copy is unpacked under SPLAT_DEPS_DIR for
-#    pvpython's PYTHONPATH (see /work/shared/ENVIRONMENT.md and scripts/paraview-env.sh).
-#    While python3-paraview is force-installed apt refuses to install anything else, so when a
-#    package is missing it is removed first (and python3-vtk9, whose pure-Python files it
-#    overwrote, reinstalled), then everything is installed and it is forced in again.
+#    libvtk9-dev needs). find_package(ParaView) checks that its imported targets' files exist:
+#    /usr/bin/pvpython and the extension modules vtkmodules/*.so and paraview/modules/*.so, none
+#    of which python3-vtk9 has (VTK 9.1's are *.cpython-311-x86_64-linux-gnu.so). So the package
+#    is downloaded and force-installed with dpkg --force-conflicts --force-overwrite, and a copy
+#    is unpacked under SPLAT_DEPS_DIR for pvpython's PYTHONPATH (see /work/shared/ENVIRONMENT.md).
+# 3. The two packages do share 38 pure-Python files (vtk.py, vtkmodules/__init__.py, all.py,
+#    util/, ...): the force-install overwrites VTK 9.1's, which breaks /usr/bin/python3's
+#    `import vtk`. python3-vtk9's own .deb is then installed again over them, so that the system
+#    VTK's Python works and dpkg's database says which package owns each file. pvpython does not
+#    need ParaView's copies: its PYTHONPATH holds the unpacked package.
+# While python3-paraview is force-installed apt refuses to install anything else, so when a
+# package is missing it is removed first (dpkg --remove; the shared files stay with
+# python3-vtk9), then everything is installed and steps 2 and 3 run again.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -77,55 +84,50 @@ done < <(for p in "${PACKAGES[@]}"; do printf '%s %s\n' "$p" "$(pkg_status "$p")
 
 if [ "${#missing[@]}" -gt 0 ]; then
   log "installing missing packages: ${missing[*]}"
-  reinstall_vtk_python=0
   if [ "$(pkg_status python3-paraview)" = installed ]; then
     log "removing the force-installed python3-paraview so that apt accepts new installs"
     quietly "${SUDO[@]}" dpkg --remove python3-paraview
-    [ "$(pkg_status python3-vtk9)" = installed ] && reinstall_vtk_python=1
   fi
   apt_update
   "${APT[@]}" install --no-install-recommends "${missing[@]}" >&2
-  if [ "$reinstall_vtk_python" -eq 1 ]; then
-    # python3-paraview had overwritten python3-vtk9's pure-Python files; put them back.
-    "${APT[@]}" install --no-install-recommends --reinstall python3-vtk9 >&2
-  fi
 fi
 
 # --- 2. python3-paraview --------------------------------------------------------------------
 pv_version="$(pkg_version paraview)"
 [ -n "$pv_version" ] || die "paraview is not installed"
 
-# The cached .deb of python3-paraview matching the installed paraview, downloaded if needed.
-pv_deb=""
+# fetch_deb PACKAGE VERSION: sets `deb` to PACKAGE=VERSION's .deb, from apt's cache or
+# $DEPS_DIR, else downloaded into $DEPS_DIR.
+deb=""
 find_cached_deb() {
-  pv_deb=""
   local f
-  for f in "$DEPS_DIR"/python3-paraview_*.deb; do
-    [ -f "$f" ] || continue
-    if [ "$(dpkg-deb -f "$f" Version 2>/dev/null)" = "$pv_version" ]; then
-      pv_deb="$f"
+  for f in /var/cache/apt/archives/"$1"_*.deb "$DEPS_DIR/$1"_*.deb; do
+    if [ -f "$f" ] && [ "$(dpkg-deb -f "$f" Version 2>/dev/null)" = "$2" ]; then
+      deb="$f"
       return 0
     fi
   done
   return 1
 }
-
-download_deb() {
+fetch_deb() {
+  deb=""
+  find_cached_deb "$1" "$2" && return 0
   mkdir -p "$DEPS_DIR"
   local tmp
   tmp="$(mktemp -d "$DEPS_DIR/download.XXXXXX")"
   local sandbox=()
   # As root, apt drops to the _apt user for downloads, which cannot write to our directory.
   [ "$(id -u)" -eq 0 ] && sandbox=(-o APT::Sandbox::User=root)
-  log "downloading python3-paraview=$pv_version"
-  if ! (cd "$tmp" && apt-get -q "${sandbox[@]}" download "python3-paraview=$pv_version" >&2); then
+  log "downloading $1=$2"
+  if ! (cd "$tmp" && apt-get -q "${sandbox[@]}" download "$1=$2" >&2); then
     apt_update
-    (cd "$tmp" && apt-get -q "${sandbox[@]}" download "python3-paraview=$pv_version" >&2) \
-      || { rm -rf "$tmp"; die "cannot download python3-paraview=$pv_version"; }
+    (cd "$tmp" && apt-get -q "${sandbox[@]}" download "$1=$2" >&2) \
+      || { rm -rf "$tmp"; die "cannot download $1=$2"; }
   fi
-  rm -f "$DEPS_DIR"/python3-paraview_*.deb
-  mv "$tmp"/python3-paraview_*.deb "$DEPS_DIR"/
+  rm -f "$DEPS_DIR/$1"_*.deb
+  mv "$tmp/$1"_*.deb "$DEPS_DIR"/
   rm -rf "$tmp"
+  find_cached_deb "$1" "$2" || die "$1=$2 download not found"
 }
 
 need_deb=0
@@ -134,11 +136,12 @@ need_deb=0
 [ "$(cat "$PV_PY_DIR/.version" 2>/dev/null || true)" = "$pv_version" ] || need_deb=1
 
 if [ "$need_deb" -eq 1 ]; then
-  find_cached_deb || { download_deb; find_cached_deb || die "python3-paraview download not found"; }
+  fetch_deb python3-paraview "$pv_version"
+  pv_deb="$deb"
 
   if [ "$(pkg_status python3-paraview)" != installed ] \
      || [ "$(pkg_version python3-paraview)" != "$pv_version" ]; then
-    log "force-installing python3-paraview (conflicts with python3-vtk9 on paper only)"
+    log "force-installing python3-paraview over the conflict with python3-vtk9"
     quietly "${SUDO[@]}" dpkg -i --force-conflicts --force-overwrite "$pv_deb"
   fi
 
@@ -153,3 +156,15 @@ fi
 
 [ -d "$PV_PY_DIR/usr/lib/python3/dist-packages/paraview" ] \
   || die "unpacked python3-paraview is incomplete: $PV_PY_DIR"
+
+# --- 3. python3-vtk9's own pure-Python files back over ParaView's ----------------------------
+vtk_py_init=/usr/lib/python3/dist-packages/vtkmodules/__init__.py
+if [ "$(dpkg-query -S "$vtk_py_init" 2>/dev/null | cut -d: -f1)" != python3-vtk9 ]; then
+  vtk_version="$(pkg_version python3-vtk9)"
+  [ -n "$vtk_version" ] || die "python3-vtk9 is not installed"
+  fetch_deb python3-vtk9 "$vtk_version"
+  log "installing python3-vtk9's own files again over python3-paraview's"
+  quietly "${SUDO[@]}" dpkg -i --force-conflicts --force-overwrite "$deb"
+  /usr/bin/python3 -c "import vtk" >/dev/null 2>&1 \
+    || die "/usr/bin/python3 still cannot import vtk after reinstalling python3-vtk9"
+fi
