@@ -2,6 +2,7 @@
 #include "vtkOpenGLVolumeSplatRasterizer.h"
 
 #include "SplatOpenGLUtilities.h"
+#include "SplatSphericalHarmonics.h"
 #include "SplatVolumeKernel.h"
 
 #include "vtkObjectFactory.h"
@@ -17,12 +18,14 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include "vtkSplatSphericalHarmonics.h"
 #include "vtkVolumeSplatFS.h"
 #include "vtkVolumeSplatMergeFS.h"
 #include "vtkVolumeSplatVS.h"
 #include "vtkVolumeSplatWeightsFS.h"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/packing.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
@@ -40,6 +43,15 @@ using Rasterizer = vtkVolumeSplatRasterizer;
 constexpr int DepthList = Rasterizer::DepthList;
 
 using splat::SetNearest;
+
+// The volume vertex shader with the lighting and spherical-harmonics code put in.
+std::string VolumeVertexShader()
+{
+  std::string source = splat::WithLighting(vtkVolumeSplatVS);
+  vtkShaderProgram::Substitute(
+    source, "//VTK::SplatSphericalHarmonics::Dec", vtkSplatSphericalHarmonics);
+  return source;
+}
 
 // An open (strict) or closed half-plane A x + B y + C > 0 (>= 0) of pixel positions.
 struct HalfPlane
@@ -132,6 +144,12 @@ struct vtkOpenGLVolumeSplatRasterizer::Internals
 {
   vtkNew<vtkOpenGLBufferObject> KernelBuffer;
   vtkNew<vtkTextureObject> KernelTexture;
+  // Spherical-harmonic coefficients of degree 1 and more, HarmonicsStride RGBA16F texels per
+  // kernel (none for degree 0: the kernels' colors are then the degree-0 colors).
+  vtkNew<vtkOpenGLBufferObject> HarmonicsBuffer;
+  vtkNew<vtkTextureObject> HarmonicsTexture;
+  int HarmonicsDegree = 0;
+  int HarmonicsStride = 0;
   std::array<vtkNew<vtkOpenGLBufferObject>, 4> OrderBuffers;
   std::array<vtkNew<vtkTextureObject>, 4> OrderTextures;
   std::array<vtkMTimeType, 4> OrderVersions{};
@@ -261,6 +279,23 @@ void vtkOpenGLVolumeSplatRasterizer::SetKernels(
     }
   }
   internal.KernelBuffer->Upload(data, vtkOpenGLBufferObject::TextureBuffer);
+  internal.HarmonicsDegree =
+    kernels.SphericalHarmonics && n > 0 ? kernels.SphericalHarmonicsDegree : 0;
+  internal.HarmonicsStride = splat::SphericalHarmonicsCoefficients(internal.HarmonicsDegree);
+  if (internal.HarmonicsDegree > 0)
+  {
+    // Half floats, one RGB coefficient per texel: the mapper keeps them within the half range.
+    const int stride = internal.HarmonicsStride;
+    std::vector<std::uint16_t> halves(4 * stride * n, 0);
+    for (std::size_t i = 0; i < n * stride; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        halves[4 * i + c] = glm::packHalf1x16(kernels.SphericalHarmonics[3 * i + c]);
+      }
+    }
+    internal.HarmonicsBuffer->Upload(halves, vtkOpenGLBufferObject::TextureBuffer);
+  }
   internal.Input = kernels;
   internal.Input.Positions = nullptr; // not kept: the arrays may go
   internal.Input.Covariances = nullptr;
@@ -270,6 +305,7 @@ void vtkOpenGLVolumeSplatRasterizer::SetKernels(
   internal.SharedCovariance = kernels.Covariances == nullptr;
   internal.Shaded = kernels.Normals != nullptr;
   internal.Input.Normals = nullptr;
+  internal.Input.SphericalHarmonics = nullptr;
   internal.Count = static_cast<GLsizei>(n);
   internal.Version = version;
   internal.OrderVersions.fill(0);
@@ -291,7 +327,8 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
   }
   GLint largestBuffer = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &largestBuffer);
-  if (static_cast<double>(internal.Count) * internal.KernelStride > largestBuffer)
+  const int largestStride = std::max(internal.KernelStride, internal.HarmonicsStride);
+  if (static_cast<double>(internal.Count) * largestStride > largestBuffer)
   {
     vtkErrorMacro(<< internal.Count << " kernels exceed this OpenGL's texture buffers ("
                   << largestBuffer << " texels); use the CPU backend.");
@@ -349,6 +386,14 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
     internal.KernelTexture->CreateTextureBuffer(
       static_cast<unsigned int>(std::max<GLsizei>(internal.Count, 1) * internal.KernelStride), 4,
       VTK_FLOAT, internal.KernelBuffer);
+    if (internal.HarmonicsDegree > 0)
+    {
+      internal.HarmonicsTexture->SetContext(window);
+      internal.HarmonicsTexture->SetInternalFormat(GL_RGBA16F);
+      internal.HarmonicsTexture->CreateTextureBuffer(
+        static_cast<unsigned int>(internal.Count * internal.HarmonicsStride), 4,
+        VTK_UNSIGNED_SHORT, internal.HarmonicsBuffer);
+    }
     internal.KernelTextureVersion = internal.Version;
   }
 
@@ -404,7 +449,7 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
   }
 
   // 3. Each list into its own buffer, front to back in each direction some pixel needs.
-  static const std::string vertexSource = splat::WithLighting(vtkVolumeSplatVS);
+  static const std::string vertexSource = VolumeVertexShader();
   vtkShaderProgram* program =
     window->GetShaderCache()->ReadyShaderProgram(vertexSource.c_str(), vtkVolumeSplatFS, "");
   if (!program || !program->GetCompiled())
@@ -451,6 +496,25 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
   internal.KernelTexture->Activate();
   internal.PixelWeights->Activate();
   program->SetUniformi("kernels", internal.KernelTexture->GetTextureUnit());
+  const int harmonicsDegree =
+    std::min(internal.HarmonicsDegree, settings->GetMaximumSphericalHarmonicsDegree());
+  program->SetUniformi("sphericalHarmonicsDegree", harmonicsDegree);
+  program->SetUniformi("sphericalHarmonicsStride", internal.HarmonicsStride);
+  // Without harmonics the sampler names the kernels' buffer: a sampler of the same type.
+  if (harmonicsDegree > 0)
+  {
+    internal.HarmonicsTexture->Activate();
+  }
+  program->SetUniformi("sphericalHarmonics",
+    (harmonicsDegree > 0 ? internal.HarmonicsTexture : internal.KernelTexture)
+      ->GetTextureUnit());
+  // The view point in the shifted coordinates of the kernels' positions, or the view axis.
+  const glm::dmat4 eyeToModel = glm::inverse(modelToEye);
+  const glm::vec3 viewPoint(eyeToModel * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+  const glm::vec3 viewAxis(
+    glm::normalize(glm::dvec3(eyeToModel * glm::dvec4(0.0, 0.0, -1.0, 0.0))));
+  program->SetUniform3f("viewPoint", glm::value_ptr(viewPoint));
+  program->SetUniform3f("viewAxis", glm::value_ptr(viewAxis));
   program->SetUniformi("pixelWeights", internal.PixelWeights->GetTextureUnit());
   state->vtkglBlendFuncSeparate(
     GL_ONE_MINUS_DST_ALPHA, GL_ONE, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
@@ -480,6 +544,10 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
     }
     order->Deactivate();
     internal.Array->Release();
+  }
+  if (harmonicsDegree > 0)
+  {
+    internal.HarmonicsTexture->Deactivate();
   }
   internal.KernelTexture->Deactivate();
 
@@ -547,6 +615,8 @@ void vtkOpenGLVolumeSplatRasterizer::ReleaseGraphicsResources(vtkWindow* window)
   Internals& internal = *this->Internal;
   internal.KernelBuffer->ReleaseGraphicsResources();
   internal.KernelTexture->ReleaseGraphicsResources(window);
+  internal.HarmonicsBuffer->ReleaseGraphicsResources();
+  internal.HarmonicsTexture->ReleaseGraphicsResources(window);
   for (int list = 0; list < 4; ++list)
   {
     internal.OrderBuffers[list]->ReleaseGraphicsResources();
@@ -579,6 +649,7 @@ void vtkOpenGLVolumeSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Kernels: " << this->Internal->Count << "\n";
+  os << indent << "SphericalHarmonicsDegree: " << this->Internal->HarmonicsDegree << "\n";
   for (int list = 0; list <= DepthList; ++list)
   {
     os << indent << "List " << list << " traversed: " << this->Traversed[list] << "\n";

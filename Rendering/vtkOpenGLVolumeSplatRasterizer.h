@@ -6,7 +6,8 @@
  * Renders the kernels, camera and settings of a vtkVolumeSplatRasterizer on the GPU, in the
  * render window's own context, with the same image semantics (paper 003's per-axis buffers):
  * - the kernels are uploaded once per input change into a texture buffer (position relative to
- *   the center of their bounds, strength, color and, for point sets, the covariance); each list
+ *   the center of their bounds, strength, color and, for point sets, the covariance; the
+ *   spherical-harmonic coefficients of degree 1 to 3 in a second one, as half floats); each list
  *   the frame needs is uploaded once per input change as a buffer of kernel indices in the
  *   order vtkVolumeSplatRasterizer::GetList gives (the grid's sheets for image data, never
  *   sorted here); DEPTH_SORTED sorts the kernels by eye depth on the CPU each frame, like the

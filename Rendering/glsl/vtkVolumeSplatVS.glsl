@@ -4,7 +4,8 @@
 // for the descending traversal of a list), four vertices (a triangle strip) covering the box of
 // its footprint's cutoff ellipse. The per-kernel setup mirrors vtkVolumeSplatRasterizer's step 2
 // and SplatVolumeKernel.h (CrossesNearPlane, ProjectVolumeKernel, MakeVolumeFootprint,
-// TruncationCompensation) and CoveredPixels (SplatSurfelKernel.h) line by line, and shades
+// TruncationCompensation) and CoveredPixels (SplatSurfelKernel.h) line by line, colors kernels
+// with spherical harmonics as vtkVolumeSplatRasterizer::UpdateViewColors does and shades
 // kernels with normals as vtkVolumeSplatRasterizer::ShadeKernel does.
 
 // Per kernel, kernelStride texels: (position relative to the shift folded into modelToEye,
@@ -30,8 +31,18 @@ uniform mat3 sharedEyeCovariance;
 uniform int shaded;
 uniform mat3 normalToEye;
 uniform int twoSidedLighting;
+// Per kernel, sphericalHarmonicsStride texels (half floats) of (RGB coefficient, unused) in the
+// basis order of SplatSphericalHarmonics.h, evaluated up to sphericalHarmonicsDegree (0: the
+// color texel) for the direction from viewPoint (in the coordinates of the kernels' positions)
+// or, in a parallel projection, along viewAxis.
+uniform samplerBuffer sphericalHarmonics;
+uniform int sphericalHarmonicsStride;
+uniform int sphericalHarmonicsDegree;
+uniform vec3 viewPoint;
+uniform vec3 viewAxis;
 
 //VTK::SplatLighting::Dec
+//VTK::SplatSphericalHarmonics::Dec
 
 flat out vec2 splatCenter;
 flat out vec3 splatConic; // 1/2 M^-1 as (xx, 2 xy, yy): beta = dx^2 xx + dx dy xy + dy^2 yy
@@ -107,6 +118,16 @@ void main()
     : strength * abs(determinant(J)) * InverseTwoPi / sqrt(detM) * compensation;
   splatDepth = -e.z;
   splatColor = texelFetch(kernels, kernelStride * k + 1).rgb;
+  if (sphericalHarmonicsDegree > 0)
+  {
+    vec3 coefficients[MaximumSphericalHarmonicsCoefficients];
+    for (int i = 0; i < sphericalHarmonicsCoefficients(sphericalHarmonicsDegree); ++i)
+    {
+      coefficients[i] = texelFetch(sphericalHarmonics, sphericalHarmonicsStride * k + i).rgb;
+    }
+    vec3 direction = perspective != 0 ? positionStrength.xyz - viewPoint : viewAxis;
+    splatColor = sphericalHarmonicsColor(coefficients, sphericalHarmonicsDegree, direction);
+  }
   if (shaded != 0)
   {
     vec3 normal = normalToEye * texelFetch(kernels, kernelStride * k + kernelStride - 1).xyz;
