@@ -1,22 +1,27 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The files the example programs read, by extension: meshes and point clouds (.ply, .vtp, .xyz,
-// .off) and volumes (.nii, .nii.gz, .vti, .mhd, .mha). Every reader throws std::runtime_error
-// with a message naming the file when it cannot read it.
+// .off), 3D Gaussian Splatting captures (.ply with 3DGS properties, .splat) and volumes (.nii,
+// .nii.gz, .vti, .mhd, .mha). Every reader throws std::runtime_error with a message naming the
+// file when it cannot read it.
 #ifndef SplatFileReaders_h
 #define SplatFileReaders_h
 
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
 #include "vtkErrorCode.h"
 #include "vtkFloatArray.h"
+#include "vtkGaussianSplatReader.h"
 #include "vtkImageData.h"
 #include "vtkMetaImageReader.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
-#include "vtkPLYReader.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkSplatPLYReader.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLPolyDataReader.h"
 
@@ -193,6 +198,37 @@ inline void RequireFile(const std::string& path)
   }
 }
 
+// Updates `reader` (one of this project's readers, which set an error code and name the file in
+// their messages); throws with the reader's own message when it fails, instead of printing it.
+inline void UpdateReader(vtkAlgorithm* reader, const std::string& path)
+{
+  std::string message;
+  vtkNew<vtkCallbackCommand> errors;
+  errors->SetClientData(&message);
+  errors->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void* callData)
+    {
+      auto* first = static_cast<std::string*>(clientData);
+      if (first->empty()) // the reader's message; the executive's follows it
+      {
+        // After VTK's prefix "ERROR: In FILE, line N\nCLASS (ADDRESS): ".
+        const std::string text = static_cast<const char*>(callData);
+        const std::size_t start = text.find("): ");
+        *first = start == std::string::npos ? text : text.substr(start + 3);
+        first->erase(first->find_last_not_of(" \n") + 1);
+      }
+    });
+  reader->AddObserver(vtkCommand::ErrorEvent, errors);
+  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  reader->Update();
+  reader->RemoveObservers(vtkCommand::ErrorEvent);
+  reader->GetExecutive()->RemoveObservers(vtkCommand::ErrorEvent);
+  if (reader->GetErrorCode() != vtkErrorCode::NoError || !message.empty())
+  {
+    throw std::runtime_error(message.empty() ? "reading '" + path + "' failed" : message);
+  }
+}
+
 // Reads a mesh or point cloud by its extension; throws with a readable message when it cannot.
 inline vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
 {
@@ -200,13 +236,9 @@ inline vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
   vtkSmartPointer<vtkPolyData> data;
   if (HasExtension(path, ".ply"))
   {
-    if (!vtkPLYReader::CanReadFile(path.c_str()))
-    {
-      throw std::runtime_error("'" + path + "' is not a readable PLY file");
-    }
-    vtkNew<vtkPLYReader> reader;
+    vtkNew<vtkSplatPLYReader> reader;
     reader->SetFileName(path.c_str());
-    reader->Update();
+    UpdateReader(reader, path);
     data = reader->GetOutput();
   }
   else if (HasExtension(path, ".vtp"))
@@ -235,14 +267,42 @@ inline vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
   else
   {
     throw std::runtime_error(
-      "'" + path + "': unknown file type; splat_render reads .ply, .vtp, .xyz and .off (surfaces) "
-      "and .nii, .nii.gz, .vti, .mhd and .mha (volumes)");
+      "'" + path + "': unknown file type; splat_render reads .ply, .vtp, .xyz and .off (surfaces), "
+      ".ply and .splat (3D Gaussian Splatting) and .nii, .nii.gz, .vti, .mhd and .mha (volumes)");
   }
   if (data->GetNumberOfPoints() == 0)
   {
     throw std::runtime_error("'" + path + "' holds no points");
   }
   return data;
+}
+
+// Whether `path` is a 3D Gaussian Splatting capture: named .splat, or a PLY file whose vertices
+// have the 3DGS properties (vtkGaussianSplatReader::IsGaussianSplatFile reads the header).
+inline bool IsGaussianSplatFile(const std::string& path)
+{
+  return HasExtension(path, ".splat") || vtkGaussianSplatReader::IsGaussianSplatFile(path.c_str());
+}
+
+// A 3D Gaussian Splatting capture: the kernels and the degree of their spherical harmonics.
+struct GaussianSplats
+{
+  vtkSmartPointer<vtkPolyData> Kernels;
+  int Degree = 0;
+};
+
+// Reads a 3D Gaussian Splatting capture; throws with a readable message when it cannot.
+inline GaussianSplats ReadGaussianSplats(const std::string& path)
+{
+  RequireFile(path);
+  vtkNew<vtkGaussianSplatReader> reader;
+  reader->SetFileName(path.c_str());
+  UpdateReader(reader, path);
+  if (reader->GetOutput()->GetNumberOfPoints() == 0)
+  {
+    throw std::runtime_error("'" + path + "' holds no Gaussians");
+  }
+  return { reader->GetOutput(), reader->GetSphericalHarmonicsDegree() };
 }
 
 // Whether `path` names a volume: image data read by VTK's NIFTI, XML image or MetaImage reader.

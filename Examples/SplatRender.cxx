@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // splat_render: renders a point cloud or a mesh (.ply, .vtp, .xyz, .off) as EWA surface splats,
-// or a volume (.nii, .nii.gz, .vti, .mhd, .mha) by EWA volume splatting, into a PNG and reports
-// the frame time. Without a file it renders the project's demo scenes.
+// or a 3D Gaussian Splatting capture (.ply, .splat) or a volume (.nii, .nii.gz, .vti, .mhd, .mha)
+// by EWA volume splatting, into a PNG and reports the frame time. Without a file it renders the project's demo scenes.
 // Run `splat_render --help` for the options.
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
@@ -50,6 +50,7 @@
 namespace
 {
 using splatexample::HasExtension;
+using splatexample::IsGaussianSplatFile;
 using splatexample::IsVolumeFile;
 using splatexample::ReadPolyData;
 using splatexample::ReadVolume;
@@ -64,6 +65,10 @@ splats, the time per frame and the splats per second. A volume FILE (.nii, .nii.
 or .mha: image data with point scalars) is drawn by vtkVolumeSplatMapper, one Gaussian kernel
 per voxel, through a transfer function over the scalar range (transparent below a fifth of
 it, then more opaque and from dark red to white towards the top), shaded unless --shade off.
+A 3D Gaussian Splatting capture (.splat, or a .ply whose vertices have the 3DGS properties
+f_dc_*, opacity, scale_* and rot_*) is drawn by vtkVolumeSplatMapper as its Gaussians with
+their own colors and opacities; other .ply files are meshes or point clouds. splat_render says
+which it chose.
 Without FILE, renders the demo scenes (the Stanford bunny, or the CGAL armadillo when the bunny
 is absent, a colored sphere, and the MRI head of Debian's mricron-data when present).
 
@@ -351,8 +356,10 @@ vtkSmartPointer<vtkSurfaceSplatMapper> SplatMapper(vtkPolyData* data, const Opti
   return mapper;
 }
 
-// `facing` turns the default view about the view up for scenes modeled facing away from +z.
-void SetUpCamera(vtkRenderer* renderer, const Options& options, double facing)
+// `facing` turns the default view about the view up for scenes modeled facing away from +z;
+// `bounds` (default: the scene's) is the box the view fits.
+void SetUpCamera(
+  vtkRenderer* renderer, const Options& options, double facing, const double* bounds = nullptr)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   if (options.ViewDirection)
@@ -366,7 +373,14 @@ void SetUpCamera(vtkRenderer* renderer, const Options& options, double facing)
   {
     camera->SetViewUp(options.ViewUp->data());
   }
-  renderer->ResetCamera();
+  if (bounds)
+  {
+    renderer->ResetCamera(bounds);
+  }
+  else
+  {
+    renderer->ResetCamera();
+  }
   camera->Azimuth(facing + options.Azimuth);
   camera->Elevation(options.Elevation);
   camera->OrthogonalizeViewUp();
@@ -558,15 +572,53 @@ vtkSmartPointer<vtkVolumeProperty> RangeProperty(vtkImageData* image)
   return property;
 }
 
-// Renders a volume like RenderScene a surface: `place` sets the camera.
-void RenderVolumeScene(vtkRenderWindow* window, vtkImageData* image, vtkVolumeProperty* property,
+// SetUpCamera fitted to the bulk of `points`, from the 2nd to the 98th percentile along each
+// axis: captures hold sparse background Gaussians far out, which would leave the scene a dot.
+void PlaceOnBulk(vtkRenderer* renderer, vtkPointSet* points, const Options& options)
+{
+  double bounds[6];
+  std::vector<double> values;
+  values.reserve(points->GetNumberOfPoints());
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    values.clear();
+    for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+    {
+      const double value = points->GetPoint(i)[axis];
+      if (std::isfinite(value))
+      {
+        values.push_back(value);
+      }
+    }
+    if (values.empty())
+    {
+      throw std::runtime_error("nothing to draw: no point has a finite position");
+    }
+    for (int side = 0; side < 2; ++side)
+    {
+      const auto at = values.begin() +
+        static_cast<std::ptrdiff_t>((side ? 0.98 : 0.02) * (values.size() - 1));
+      std::nth_element(values.begin(), at, values.end());
+      bounds[2 * axis + side] = *at;
+    }
+  }
+  SetUpCamera(renderer, options, 0.0, bounds);
+}
+
+// Renders a volume (image data, shaded as options.Shade says) or a set of Gaussian kernels like
+// RenderScene a surface: `place` sets the camera.
+void RenderVolumeScene(vtkRenderWindow* window, vtkDataSet* kernels, vtkVolumeProperty* property,
   const Options& options, const std::string& png,
   const std::function<void(vtkRenderer*)>& place)
 {
   splatexample::MakeFolder(vtksys::SystemTools::GetFilenamePath(png));
   vtkSmartPointer<vtkVolumeSplatMapper> mapper = splatexample::VolumeSplat(
-    image, options.Backend, options.Ordering, options.Cutoff.value_or(0.0));
-  property->SetShade(options.Shade ? 1 : 0);
+    kernels, options.Backend, options.Ordering, options.Cutoff.value_or(0.0));
+  const bool voxels = vtkImageData::SafeDownCast(kernels) != nullptr;
+  if (voxels)
+  {
+    property->SetShade(options.Shade ? 1 : 0);
+  }
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
   volume->SetProperty(property);
@@ -581,14 +633,16 @@ void RenderVolumeScene(vtkRenderWindow* window, vtkImageData* image, vtkVolumePr
   window->Render();
   if (mapper->GetNumberOfKernels() == 0)
   {
-    throw std::runtime_error("nothing to draw: the transfer function hides every voxel");
+    throw std::runtime_error(voxels ? "nothing to draw: the transfer function hides every voxel"
+                                    : "nothing to draw: every kernel is transparent or invalid");
   }
   const auto [ms, mapperMs] =
     TimeFrames(window, options, [&mapper] { return mapper->GetLastRenderTimeInMilliseconds(); });
   PrintBackend(window, mapper->GetLastBackend());
-  const vtkIdType kernels = mapper->GetNumberOfKernels();
-  std::cout << "  kernels:       " << kernels << " (" << mapper->GetNumberOfTransparentKernels()
-            << " transparent voxels left out, " << mapper->GetNumberOfInvalidKernels()
+  const vtkIdType count = mapper->GetNumberOfKernels();
+  std::cout << "  kernels:       " << count << " (" << mapper->GetNumberOfTransparentKernels()
+            << " transparent " << (voxels ? "voxels" : "kernels") << " left out, "
+            << mapper->GetNumberOfInvalidKernels()
             << " invalid; " << splatexample::OrderingModeName(options.Ordering)
             << " ordering, lists";
   for (int list = 0; list < 4; ++list)
@@ -602,10 +656,10 @@ void RenderVolumeScene(vtkRenderWindow* window, vtkImageData* image, vtkVolumePr
   {
     std::cout << ", " << mapper->GetNumberOfProjectedKernels() << " projected";
   }
-  std::cout << "; " << (options.Shade ? "shaded" : "unshaded") << ")\n"
+  std::cout << "; " << (property->GetShade() ? "shaded" : "unshaded") << ")\n"
             << std::fixed << std::setprecision(2) << "  ms per frame:  " << ms << " (median of "
             << options.Frames << " frames, render window); mapper " << mapperMs << "\n"
-            << "  kernels per s: " << std::setprecision(0) << kernels / (ms * 1e-3) << "\n";
+            << "  kernels per s: " << std::setprecision(0) << count / (ms * 1e-3) << "\n";
   splatexample::WritePNG(window, png);
   std::cout << "  image:         " << png << " (" << options.Width << "x" << options.Height << ")"
             << std::endl;
@@ -675,9 +729,25 @@ int RenderFile(const Options& options)
       [&options](vtkRenderer* renderer) { SetUpCamera(renderer, options, 0.0); });
     return EXIT_SUCCESS;
   }
+  if (IsGaussianSplatFile(options.Input))
+  {
+    const splatexample::GaussianSplats capture = splatexample::ReadGaussianSplats(options.Input);
+    std::cout << options.Input << ": 3D Gaussian Splatting capture: "
+              << capture.Kernels->GetNumberOfPoints() << " Gaussians, SH degree "
+              << capture.Degree << ", drawn by vtkVolumeSplatMapper" << std::endl;
+    // Unshaded: the captured colors hold the lighting. The kernels' own colors and opacities
+    // are drawn (the mapper's Color and Opacity arrays), not transfer functions.
+    vtkNew<vtkVolumeProperty> property;
+    property->ShadeOff();
+    RenderVolumeScene(MakeWindow(options), capture.Kernels, property, options, png,
+      [&options, &capture](vtkRenderer* renderer)
+      { PlaceOnBulk(renderer, capture.Kernels, options); });
+    return EXIT_SUCCESS;
+  }
   vtkSmartPointer<vtkPolyData> data = ReadPolyData(options.Input);
-  std::cout << options.Input << ": " << data->GetNumberOfPoints() << " points, "
-            << data->GetNumberOfPolys() << " polygons" << std::endl;
+  std::cout << options.Input << ": mesh/point cloud: " << data->GetNumberOfPoints()
+            << " points, " << data->GetNumberOfPolys() << " polygons, drawn as surface splats"
+            << std::endl;
   RenderScene(MakeWindow(options), SplatMapper(data, options), options, png);
   return EXIT_SUCCESS;
 }

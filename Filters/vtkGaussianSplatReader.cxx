@@ -4,6 +4,7 @@
 #include "vtkByteSwap.h"
 #include "vtkCallbackCommand.h"
 #include "vtkErrorCode.h"
+#include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -12,6 +13,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkSplatPLYReader.h"
 #include "vtkStringArray.h"
@@ -88,6 +90,20 @@ void ForwardProgress(vtkObject* caller, unsigned long, void* clientData, void*)
   auto* reader = static_cast<vtkGaussianSplatReader*>(clientData);
   // Reading the PLY file is most of the work; the conversion follows.
   reader->UpdateProgress(0.8 * vtkAlgorithm::SafeDownCast(caller)->GetProgress());
+}
+
+// Keeps the first error message of vtkSplatPLYReader (or its executive) in the std::string
+// `clientData`, without VTK's prefix, for this reader to report as its own.
+void KeepError(vtkObject*, unsigned long, void* clientData, void* callData)
+{
+  auto* message = static_cast<std::string*>(clientData);
+  if (message->empty())
+  {
+    const std::string text = static_cast<const char*>(callData);
+    const std::size_t start = text.find("): ");
+    *message = start == std::string::npos ? text : text.substr(start + 3);
+    message->erase(message->find_last_not_of(" \n") + 1);
+  }
 }
 }
 
@@ -176,11 +192,19 @@ bool vtkGaussianSplatReader::ReadPLY(vtkPolyData* output)
   progress->SetCallback(ForwardProgress);
   progress->SetClientData(this);
   ply->AddObserver(vtkCommand::ProgressEvent, progress);
+  std::string message;
+  vtkNew<vtkCallbackCommand> errors;
+  errors->SetCallback(KeepError);
+  errors->SetClientData(&message);
+  ply->AddObserver(vtkCommand::ErrorEvent, errors);
+  ply->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
   ply->Update();
   if (ply->GetErrorCode() != vtkErrorCode::NoError)
   {
-    // vtkSplatPLYReader has said where and what.
-    this->Fail(ply->GetErrorCode(), "the PLY file cannot be read");
+    // vtkSplatPLYReader's message names the file, the place and the problem.
+    const std::string prefix = std::string(this->FileName) + ": ";
+    this->Fail(ply->GetErrorCode(),
+      message.compare(0, prefix.size(), prefix) == 0 ? message.substr(prefix.size()) : message);
     return false;
   }
   vtkPolyData* vertices = ply->GetOutput();
@@ -224,9 +248,14 @@ bool vtkGaussianSplatReader::ReadPLY(vtkPolyData* output)
   }
 
   const vtkIdType n = vertices->GetNumberOfPoints();
-  auto column = [properties](const std::string& name)
-  { return AsFloat(properties->GetArray(name.c_str())); };
-  std::vector<vtkSmartPointer<vtkFloatArray>> dc, scales, rotations, coefficients;
+  // The float values of each property (converted when stored in another type).
+  std::vector<vtkSmartPointer<vtkFloatArray>> keep;
+  auto column = [properties, &keep](const std::string& name)
+  {
+    keep.push_back(AsFloat(properties->GetArray(name.c_str())));
+    return static_cast<const float*>(keep.back()->GetPointer(0));
+  };
+  std::vector<const float*> dc, scales, rotations, coefficients;
   for (int c = 0; c < 3; ++c)
   {
     dc.push_back(column("f_dc_" + std::to_string(c)));
@@ -240,7 +269,7 @@ bool vtkGaussianSplatReader::ReadPLY(vtkPolyData* output)
   {
     coefficients.push_back(column("f_rest_" + std::to_string(k)));
   }
-  vtkSmartPointer<vtkFloatArray> logit = column("opacity");
+  const float* logit = column("opacity");
 
   auto scale = NewArray("Scale", 3, n);
   auto rotation = NewArray("Rotation", 4, n);
@@ -249,38 +278,38 @@ bool vtkGaussianSplatReader::ReadPLY(vtkPolyData* output)
   const int perChannel = rest / 3;
   vtkSmartPointer<vtkFloatArray> harmonics =
     rest ? NewArray("SphericalHarmonics", 3 * (perChannel + 1), n) : nullptr;
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    float q[4];
-    for (int c = 0; c < 4; ++c)
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      q[c] = rotations[c]->GetValue(i);
-    }
-    Normalize(q, rotation->GetPointer(4 * i));
-    opacity->SetValue(i, static_cast<float>(1.0 / (1.0 + std::exp(-logit->GetValue(i)))));
-    for (int c = 0; c < 3; ++c)
-    {
-      scale->SetValue(3 * i + c, std::exp(scales[c]->GetValue(i)));
-      color->SetValue(3 * i + c, BaseColor(dc[c]->GetValue(i)));
-    }
-    if (harmonics)
-    {
-      // The file stores f_rest channel-major; the output interleaves the channels.
-      float* out = harmonics->GetPointer(3 * (perChannel + 1) * i);
-      for (int c = 0; c < 3; ++c)
+      for (vtkIdType i = begin; i < end; ++i)
       {
-        out[c] = dc[c]->GetValue(i);
-        for (int k = 0; k < perChannel; ++k)
+        float q[4];
+        for (int c = 0; c < 4; ++c)
         {
-          out[3 * (k + 1) + c] = coefficients[c * perChannel + k]->GetValue(i);
+          q[c] = rotations[c][i];
+        }
+        Normalize(q, rotation->GetPointer(4 * i));
+        opacity->SetValue(i, static_cast<float>(1.0 / (1.0 + std::exp(-logit[i]))));
+        for (int c = 0; c < 3; ++c)
+        {
+          scale->SetValue(3 * i + c, std::exp(scales[c][i]));
+          color->SetValue(3 * i + c, BaseColor(dc[c][i]));
+        }
+        if (harmonics)
+        {
+          // The file stores f_rest channel-major; the output interleaves the channels.
+          float* out = harmonics->GetPointer(3 * (perChannel + 1) * i);
+          for (int c = 0; c < 3; ++c)
+          {
+            out[c] = dc[c][i];
+            for (int k = 0; k < perChannel; ++k)
+            {
+              out[3 * (k + 1) + c] = coefficients[c * perChannel + k][i];
+            }
+          }
         }
       }
-    }
-    if (i % 65536 == 0)
-    {
-      this->UpdateProgress(0.8 + 0.2 * i / std::max<vtkIdType>(n, 1));
-    }
-  }
+    });
   output->SetPoints(vertices->GetPoints());
   vtkPointData* pointData = output->GetPointData();
   for (vtkFloatArray* array : { scale.Get(), rotation.Get(), opacity.Get(), color.Get() })

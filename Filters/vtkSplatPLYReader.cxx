@@ -293,7 +293,7 @@ public:
     this->Consumed += static_cast<vtkTypeInt64>(n);
   }
 
-  // One header line without its end of line; false at the end of the file.
+  // One header line without its end of line; false when the file ends before the line does.
   bool ReadLine(std::string& line)
   {
     line.clear();
@@ -318,7 +318,7 @@ public:
       }
       line += c;
     }
-    return !line.empty();
+    return false;
   }
 
   // The next whitespace-separated ascii token; false at the end of the file.
@@ -932,7 +932,7 @@ private:
     const std::size_t size = std::max<std::size_t>(element.ScalarSize, 1);
     const vtkTypeInt64 batch = element.HasLists
       ? 1 << 16
-      : std::max<vtkTypeInt64>(1, static_cast<vtkTypeInt64>((4 << 20) / size));
+      : std::max<vtkTypeInt64>(1, static_cast<vtkTypeInt64>((256 << 10) / size));
     // Binary records without lists are decoded from the file's bytes; the others are packed
     // into `packed` first (binary values in the file's byte order, ascii ones in the machine's,
     // for which Swap is false).
