@@ -459,7 +459,10 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
       indexToModel[column][row] = direction->GetElement(row, column) * spacing[column];
     }
   }
-  const glm::dvec3 origin(image->GetOrigin()[0], image->GetOrigin()[1], image->GetOrigin()[2]);
+  // Voxel (x, y, z) counts from the extent's first point, which need not be index 0.
+  const int* extent = image->GetExtent();
+  glm::dvec3 origin;
+  image->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], &origin.x);
   const double voxelVolume = std::abs(glm::determinant(indexToModel));
   const bool shaded = property->GetShade(0) != 0;
   const glm::dmat3 gradientToModel = glm::transpose(glm::inverse(indexToModel));
