@@ -5,6 +5,8 @@
 //   rotated vtkVolume: the center pixel is the color computed by hand for the view direction in
 //   the data's coordinates, times the kernel's peak opacity (0.99) over the black background;
 //   the views' colors differ, so a view-independent color fails;
+// - a kernel off the view axis: colored for its own direction in a perspective projection, for
+//   the view axis in a parallel one;
 // - MaximumSphericalHarmonicsDegree 0: the view-independent color 0.5 + Y0 k0 from every view;
 // - Shade on: the harmonic color lit like any other, (ambient + diffuse) times it;
 // - a moved camera and a changed degree recolor the kernels without rebuilding the lists;
@@ -151,17 +153,18 @@ struct Scene
   }
 };
 
-glm::dvec3 CenterPixel(const std::vector<double>& image)
+glm::dvec3 CenterPixel(const std::vector<double>& image, int x = Size / 2)
 {
-  const std::size_t p = 3 * (static_cast<std::size_t>(Size / 2) * Size + Size / 2);
+  const std::size_t p = 3 * (static_cast<std::size_t>(Size / 2) * Size + x);
   return glm::dvec3(image[p], image[p + 1], image[p + 2]);
 }
 
-// Checks the center pixel against `expected` times the peak opacity; returns the difference.
+// Checks the pixel in column x of the center row against `expected` times the peak opacity;
+// returns the difference.
 double CheckCenter(const std::vector<double>& image, const glm::dvec3& expected,
-  const std::string& what)
+  const std::string& what, int x = Size / 2)
 {
-  const glm::dvec3 center = CenterPixel(image);
+  const glm::dvec3 center = CenterPixel(image, x);
   const glm::dvec3 wanted = 0.99 * expected;
   const double difference = glm::length(center - wanted) / std::sqrt(3.0);
   std::printf("%-44s center (%.4f %.4f %.4f), by hand (%.4f %.4f %.4f), RMS difference %.5f\n",
@@ -222,6 +225,28 @@ void ViewDependence(int backend)
   Check(builds > 0 && scene.Mapper->GetNumberOfListBuilds() == builds,
     Name(backend) + ": lists rebuilt on a camera or degree change: " + std::to_string(builds) +
       " then " + std::to_string(scene.Mapper->GetNumberOfListBuilds()));
+}
+
+// A kernel off the view axis: in a perspective projection colored for its own direction from
+// the eye, in a parallel one for the view axis. Its center is 24 pixels right of the view's in
+// both projections (depth 4).
+void OffAxis(int backend)
+{
+  std::vector<double> coefficients(&K[0][0], &K[0][0] + 12);
+  const glm::dvec3 center(0.8, 0.0, 0.0);
+  Scene scene(Kernels({ center }, 0.3, 12, coefficients), backend);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  const double pixel = 0.8 / 24.0; // pixel size at depth 4
+  camera->SetViewAngle(vtkMath::DegreesFromRadians(2.0 * std::atan(0.5 * Size * pixel / 4.0)));
+  camera->SetParallelScale(0.5 * Size * pixel);
+  for (bool parallel : { false, true })
+  {
+    camera->SetParallelProjection(parallel);
+    const glm::dvec3 d = parallel ? glm::dvec3(0.0, 0.0, -1.0) : glm::normalize(center - Eyes[0]);
+    CheckCenter(scene.View(Eyes[0]), HandColor(d, 1),
+      Name(backend) + (parallel ? " off axis, parallel" : " off axis, perspective"),
+      Size / 2 + 24);
+  }
 }
 
 // Shade on, a normal facing the eye, the headlight: (ambient + diffuse) times the color.
@@ -315,6 +340,7 @@ int main()
   for (int backend : Backends)
   {
     ViewDependence(backend);
+    OffAxis(backend);
     Shading(backend);
   }
   DegreeThree();
