@@ -12,7 +12,8 @@ Checks that
   exposed; a missing property fails;
 - mappers/VolumeSplatMapper creates a vtkVolumeSplatMapper (a vtkAbstractVolumeMapper) whose
   settings (OrderingMode, BlendThreshold, Cutoff, Backend, CovarianceArrayName, ScaleArrayName,
-  RotationArrayName, ColorArrayName, OpacityArrayName) have their defaults and round-trip the
+  RotationArrayName, ColorArrayName, OpacityArrayName, SphericalHarmonicsArrayName,
+  MaximumSphericalHarmonicsDegree) have their defaults and round-trip the
   same way, with their enumerations and ranges, and whose render statistics (LastBackend,
   NumberOfKernels, NumberOfTransparentKernels, NumberOfInvalidKernels, NumberOfProjectedKernels,
   NumberOfNearPlaneKernels, NumberOfFrustumCulledKernels, NumberOfSorts, NumberOfListBuilds,
@@ -195,7 +196,8 @@ def test_volume_mapper(servermanager):
     mapper = servermanager._getPyProxy(smproxy)
 
     settings = ["OrderingMode", "BlendThreshold", "Cutoff", "Backend", "CovarianceArrayName",
-                "ScaleArrayName", "RotationArrayName", "ColorArrayName", "OpacityArrayName"]
+                "ScaleArrayName", "RotationArrayName", "ColorArrayName", "OpacityArrayName",
+                "SphericalHarmonicsArrayName", "MaximumSphericalHarmonicsDegree"]
     counts = ["NumberOfKernels", "NumberOfTransparentKernels", "NumberOfInvalidKernels",
               "NumberOfProjectedKernels", "NumberOfNearPlaneKernels",
               "NumberOfFrustumCulledKernels", "NumberOfSorts", "NumberOfListBuilds",
@@ -227,16 +229,18 @@ def test_volume_mapper(servermanager):
         {"OrderingMode": 0, "BlendThreshold": 0.85, "Cutoff": 4.5, "Backend": 0,
          "CovarianceArrayName": "Covariance", "ScaleArrayName": "Scale",
          "RotationArrayName": "Rotation", "ColorArrayName": "Color",
-         "OpacityArrayName": "Opacity"},
+         "OpacityArrayName": "Opacity", "SphericalHarmonicsArrayName": "SphericalHarmonics",
+         "MaximumSphericalHarmonicsDegree": 3},
         expected_entries, {"OrderingMode": "Blended", "Backend": "Auto"})
     check_domain_range(smproxy, "BlendThreshold", "vtkSMDoubleRangeDomain", 0.0, 0.99)
     check_domain_range(smproxy, "Cutoff", "vtkSMDoubleRangeDomain", 0.001, 50.0)
+    check_domain_range(smproxy, "MaximumSphericalHarmonicsDegree", "vtkSMIntRangeDomain", 0, 3)
 
     # Round trips: proxy property -> VTK object -> information property.
-    values = {"BlendThreshold": 0.5, "Cutoff": 2.0}
+    values = {"BlendThreshold": 0.5, "Cutoff": 2.0, "MaximumSphericalHarmonicsDegree": 1}
     strings = {"CovarianceArrayName": "Sigma", "ScaleArrayName": "Scales",
                "RotationArrayName": "Quaternion", "ColorArrayName": "RGB",
-               "OpacityArrayName": "Alpha"}
+               "OpacityArrayName": "Alpha", "SphericalHarmonicsArrayName": "SH"}
     for name, value in list(values.items()) + list(strings.items()):
         setattr(mapper, name, value)
     mapper.OrderingMode = "Clipped"
