@@ -5,6 +5,7 @@
 //   with every value equal, points as double when stored as double, float colors scaled;
 // - corrupt headers and data (counts, sizes, types, list lengths, indices, ascii tokens,
 //   truncations) each give an error naming the file and the place, and an empty output;
+// - progress events rise from 0 to 1;
 // - with --bunny: ../shared/data/bunny.ply (skipped when absent) gives what VTK's vtkPLYReader
 //   gives, 35947 points and 69451 triangles.
 #include "SplatPLYTestUtilities.h"
@@ -323,5 +324,19 @@ int main(int argc, char* argv[])
       names->GetNumberOfValues() == 20 && names->GetValue(19) == "neighbors",
     "GetVertexPropertyNames lists the 20 vertex properties");
   CheckCorrupt(folder);
+
+  // Progress events from 0 to 1.
+  std::vector<double> progress;
+  vtkNew<vtkSplatPLYReader> reader;
+  reader->SetFileName((folder + "/TestSplatPLYReader_binary_big_endian_double.ply").c_str());
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetClientData(&progress);
+  observer->SetCallback([](vtkObject*, unsigned long, void* clientData, void* callData)
+    { static_cast<std::vector<double>*>(clientData)->push_back(*static_cast<double*>(callData)); });
+  reader->AddObserver(vtkCommand::ProgressEvent, observer);
+  reader->Update();
+  Check(progress.size() >= 3 && progress.front() == 0.0 && progress.back() == 1.0 &&
+      std::is_sorted(progress.begin(), progress.end()),
+    "progress events rising from 0 to 1");
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
