@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // splat_render: renders a point cloud or a mesh (.ply, .vtp, .xyz, .off) as EWA surface splats,
 // or a 3D Gaussian Splatting capture (.ply, .splat) or a volume (.nii, .nii.gz, .vti, .mhd, .mha)
-// by EWA volume splatting, into a PNG and reports the frame time. Without a file it renders the project's demo scenes.
+// by EWA volume splatting, into a PNG and reports the frame time. Without a file it renders the
+// project's demo scenes.
 // Run `splat_render --help` for the options.
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
