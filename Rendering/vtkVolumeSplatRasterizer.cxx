@@ -809,6 +809,7 @@ const float* vtkVolumeSplatRasterizer::UpdateViewColors(const Camera& camera, bo
     });
   internal.ViewDegree = degree;
   internal.ViewKey = key;
+  ++this->ViewColorCount;
   return internal.ViewColors.data();
 }
 
@@ -836,4 +837,5 @@ void vtkVolumeSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FrustumCulledCount: " << this->FrustumCulledCount << "\n";
   os << indent << "SortCount: " << this->SortCount << "\n";
   os << indent << "ListBuildCount: " << this->ListBuildCount << "\n";
+  os << indent << "ViewColorCount: " << this->ViewColorCount << "\n";
 }

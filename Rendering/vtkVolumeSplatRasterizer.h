@@ -21,7 +21,8 @@
  * - DepthSorted: one global front-to-back sort of the kernels by eye-space depth per frame.
  *
  * A frame has four steps: per-pixel list weights; setup of every kernel, parallel over kernels
- * (footprint, bounding box, skip reasons); binning into 16-row bands in list order, for each list
+ * (footprint, bounding box, skip reasons; spherical-harmonic colors, evaluated again only when
+ * the view point or the degree changed); binning into 16-row bands in list order, for each list
  * some pixel needs, keeping only the kernels that overlap the band's pixels of that list (in
  * parallel over chunks of the list, into copies of the kernels that the compositing reads in
  * sequence); and compositing, parallel over bands. A band's pixels see their kernels in list
@@ -202,7 +203,8 @@ public:
    * axes, DepthList for the depth-sorted one) was traversed and how many kernels it splatted;
    * kernels left out because their cutoff ellipsoid reaches the near plane or lies behind the
    * eye, or because they lie outside the view frustum; and the comparison sorts done (list
-   * builds of point sets and per-frame depth sorts; never for image data).
+   * builds of point sets and per-frame depth sorts; never for image data), the list builds and
+   * the evaluations of the kernels' spherical-harmonic colors since this object was made.
    */
   bool GetListTraversed(int list) const;
   vtkIdType GetProjectedCount(int list) const;
@@ -211,6 +213,7 @@ public:
   vtkGetMacro(FrustumCulledCount, vtkIdType);
   vtkGetMacro(SortCount, vtkIdType);
   vtkGetMacro(ListBuildCount, vtkIdType);
+  vtkGetMacro(ViewColorCount, vtkIdType);
   ///@}
 
   /**
@@ -253,6 +256,7 @@ protected:
   vtkIdType FrustumCulledCount = 0;
   vtkIdType SortCount = 0;
   vtkIdType ListBuildCount = 0;
+  vtkIdType ViewColorCount = 0;
 
   std::vector<splat::Light> Lights;
   splat::Material Material;

@@ -2,8 +2,8 @@
 // Unit tests of the EWA volume footprint (SplatVolumeKernel.h) and of the CPU volume rasterizer:
 // footprints against the exact integral along pixel rays, the Jacobian against finite
 // differences, the voxel kernels' partition of unity, scale + quaternion against covariance,
-// the near plane and degenerate kernels, list selection, the optical model on a slab, and
-// determinism across thread counts.
+// the near plane and degenerate kernels, list selection, the optical model on a slab,
+// determinism across thread counts, and spherical-harmonic colors per view point.
 #include "SplatVolumeKernel.h"
 #include "vtkVolumeSplatRasterizer.h"
 
@@ -395,4 +395,58 @@ TEST(VolumeSplatRasterizer, SameImageForAnyThreadCount)
     images.push_back(rasterizer->GetColors());
   }
   EXPECT_EQ(images[0], images[1]);
+}
+
+// Spherical-harmonic colors: one kernel of degree 1 seen from two eyes; the color at its center
+// is the one by hand for the direction from the eye, evaluated once per view point and degree
+// (not again for a frame from the same eye, nor for degree 0, which uses the Colors).
+TEST(VolumeSplatRasterizer, SphericalHarmonicColorsFollowTheViewPoint)
+{
+  const double position[3] = { 0.0, 0.0, 0.0 };
+  const float covariance[6] = { 0.09f, 0.0f, 0.0f, 0.09f, 0.0f, 0.09f };
+  const float degreeZero[3] = { 0.6f, 0.45f, 0.5f };
+  const float strength = 1.0f;
+  // k0 .. k3, RGB each.
+  const float k[12] = { 0.3f, -0.2f, 0.1f, 0.8f, 0.0f, -0.4f, 0.0f, 0.8f, 0.3f, -0.4f, 0.3f,
+    0.8f };
+  vtkVolumeSplatRasterizer::Kernels kernels;
+  kernels.Count = 1;
+  kernels.Positions = position;
+  kernels.Covariances = covariance;
+  kernels.Colors = degreeZero;
+  kernels.Strengths = &strength;
+  kernels.PeakOpacity = true;
+  kernels.SphericalHarmonics = k;
+  kernels.SphericalHarmonicsDegree = 1;
+  vtkNew<vtkVolumeSplatRasterizer> rasterizer;
+  rasterizer->SetKernels(kernels);
+  const double y0 = 0.5 / std::sqrt(Pi), y1 = std::sqrt(3.0 / (4.0 * Pi));
+  auto expectCenter = [&](const glm::dvec3& eye, int degree)
+  {
+    rasterizer->Render(LookAt(eye, Perspective()));
+    const glm::dvec3 d = -glm::normalize(eye);
+    const float* pixel = &rasterizer->GetImage()[4 * (150 * 400 + 200)];
+    for (int c = 0; c < 3; ++c)
+    {
+      const double color = degree == 0
+        ? degreeZero[c]
+        : 0.5 + y0 * k[c] - y1 * d.y * k[3 + c] + y1 * d.z * k[6 + c] - y1 * d.x * k[9 + c];
+      // Premultiplied by the peak opacity 0.99.
+      EXPECT_NEAR(pixel[c], 0.99 * color, 1e-3) << "channel " << c << " degree " << degree;
+    }
+  };
+  const glm::dvec3 a(0.0, 0.0, 4.0), b(3.0, 1.0, 2.0);
+  expectCenter(a, 1);
+  expectCenter(a, 1);
+  EXPECT_EQ(rasterizer->GetViewColorCount(), 1);
+  expectCenter(b, 1);
+  EXPECT_EQ(rasterizer->GetViewColorCount(), 2);
+  rasterizer->SetMaximumSphericalHarmonicsDegree(0);
+  expectCenter(a, 0);
+  rasterizer->SetMaximumSphericalHarmonicsDegree(3); // the kernels' degree 1, as before at b
+  expectCenter(b, 1);
+  EXPECT_EQ(rasterizer->GetViewColorCount(), 2);
+  rasterizer->SetKernels(kernels);
+  expectCenter(b, 1);
+  EXPECT_EQ(rasterizer->GetViewColorCount(), 3);
 }
