@@ -200,7 +200,8 @@ int main(int argc, char* argv[])
   tiled->fill(openvdb::CoordBBox(-3, -3, -3, 60, 60, 60), 0.1f * MaxExtinction, true);
   auto voxelized = tiled->deepCopy();
   voxelized->tree().voxelizeActiveTiles();
-  const openvdb::Vec3d boxCenter = tiled->transform().indexToWorld(openvdb::Vec3d(28.5, 28.5, 28.5));
+  const openvdb::Vec3d boxCenter =
+    tiled->transform().indexToWorld(openvdb::Vec3d(28.5, 28.5, 28.5));
   vtkIdType voxelKernels = 0;
   const std::vector<double> voxels =
     RenderFile(Write(temp, "voxelized", voxelized), boxCenter, 4.0, "voxelized",
