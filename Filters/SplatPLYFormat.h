@@ -284,13 +284,13 @@ public:
   bool ReadLine(std::string& line)
   {
     line.clear();
-    ++this->LineNumber;
     while (this->Fill(1) == 1)
     {
       const char c = this->Buffer[this->Begin];
       this->Consume(1);
       if (c == '\n')
       {
+        ++this->LineNumber;
         if (!line.empty() && line.back() == '\r')
         {
           line.pop_back();
@@ -353,7 +353,7 @@ private:
   std::size_t End = 0;
   vtkTypeInt64 Size = 0;
   vtkTypeInt64 Consumed = 0;
-  int LineNumber = 0;
+  int LineNumber = 1; // of the current position
 };
 }
 

@@ -62,8 +62,9 @@ public:
     {
       if (!this->In.ReadLine(line))
       {
-        throw this->HeaderError(vtkErrorCode::PrematureEndOfFileError,
-          "the file ends inside the header (no end_header)");
+        throw ReadError(vtkErrorCode::PrematureEndOfFileError,
+          "header line " + std::to_string(this->In.Line()) +
+            ": the file ends inside the header (no end_header)");
       }
       std::istringstream words(line);
       std::string keyword;
@@ -124,8 +125,8 @@ public:
     return nullptr;
   }
 
-  // Reads the data of every element: the vertices into `points` and `pointData`, the faces
-  // into `polys` and `cellData`. `progress` is called with the fraction of the file read.
+  // Reads the data of every element into `output`: the vertices as points and point data, the
+  // faces as polygons and cell data. `progress` is called with the fraction of the file read.
   template <typename Progress>
   void ReadData(vtkPolyData* output, Progress&& progress)
   {
@@ -169,9 +170,12 @@ public:
   }
 
 private:
+  // The number of the header line just read.
+  int HeaderLine() const { return this->In.Line() - 1; }
+
   ReadError HeaderError(int code, const std::string& what) const
   {
-    return ReadError(code, "header line " + std::to_string(this->In.Line()) + ": " + what);
+    return ReadError(code, "header line " + std::to_string(this->HeaderLine()) + ": " + what);
   }
 
   int ParseType(const std::string& name) const
@@ -218,7 +222,7 @@ private:
         vtkErrorCode::FileFormatError, "expected 'element NAME COUNT' with a count >= 0");
     }
     element.Name = fields[0];
-    element.Line = this->In.Line();
+    element.Line = this->HeaderLine();
     if (this->Find(element.Name))
     {
       throw this->HeaderError(
@@ -254,7 +258,7 @@ private:
         "expected 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'");
     }
     property.Name = fields.back();
-    property.Line = this->In.Line();
+    property.Line = this->HeaderLine();
     Element& element = this->Elements.back();
     for (const Property& other : element.Properties)
     {
