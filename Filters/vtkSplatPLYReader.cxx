@@ -418,8 +418,9 @@ private:
         " of " + std::to_string(element.Count));
   }
 
-  // Checks before allocating that `count` records of at least `bytes` bytes each (binary) or
-  // `values` values each (ascii: at least two characters a value) fit in the rest of the file.
+  // Checks before allocating that the element's records fit in the rest of the file: binary
+  // records of at least MinimumSize bytes (empty lists), ascii ones of at least two characters
+  // a value (the last one of the file may lack its separator).
   void CheckFits(const Element& element) const
   {
     const vtkTypeInt64 remaining = this->In.Remaining();
@@ -461,7 +462,7 @@ private:
           // Values beyond the type's range are errors; NaN and infinities are passed on.
           valid = valid &&
             !(std::isfinite(value) && std::abs(value) > std::numeric_limits<T>::max());
-          v = static_cast<T>(value);
+          v = valid ? static_cast<T>(value) : T{};
         }
         else
         {
@@ -469,7 +470,7 @@ private:
           const auto parsed = std::from_chars(start, end, value);
           valid = parsed.ptr == end && parsed.ec == std::errc() &&
             value >= std::numeric_limits<T>::lowest() && value <= std::numeric_limits<T>::max();
-          v = static_cast<T>(value);
+          v = valid ? static_cast<T>(value) : T{};
         }
         std::memcpy(out, &v, sizeof(T));
         return valid;
