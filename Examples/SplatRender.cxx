@@ -4,9 +4,9 @@
 // by EWA volume splatting, into a PNG and reports the frame time. Without a file it renders the
 // project's demo scenes.
 // Run `splat_render --help` for the options.
-#include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
 #include "SplatFileReaders.h"
+#include "SplatRenderOptions.h"
 #include "SplatVolumeScenes.h"
 #include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
@@ -32,16 +32,12 @@
 #include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <iomanip>
 #include <iostream>
-#include <map>
-#include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -50,290 +46,13 @@
 
 namespace
 {
+using namespace splatrender;
 using splatexample::HasExtension;
 using splatexample::IsGaussianSplatFile;
 using splatexample::IsVolumeFile;
 using splatexample::ReadPolyData;
 using splatexample::ReadVolume;
-using splatexample::UsageError;
-using Triple = std::array<double, 3>;
 
-const char* const Usage = R"(Usage: splat_render [OPTIONS] [FILE]
-
-Renders FILE (.ply, .vtp, .xyz or .off; a mesh or a point cloud) as EWA surface splats
-(vtkSurfelGenerator + vtkSurfaceSplatMapper) into a PNG and prints the backend, the number of
-splats, the time per frame and the splats per second. A volume FILE (.nii, .nii.gz, .vti, .mhd
-or .mha: image data with point scalars) is drawn by vtkVolumeSplatMapper, one Gaussian kernel
-per voxel, through a transfer function over the scalar range (transparent below a fifth of
-it, then more opaque and from dark red to white towards the top), shaded unless --shade off.
-A 3D Gaussian Splatting capture (.splat, or a .ply whose vertices have the 3DGS properties
-f_dc_*, opacity, scale_* and rot_*) is drawn by vtkVolumeSplatMapper as its Gaussians with
-their own colors and opacities; other .ply files are meshes or point clouds. splat_render says
-which it chose.
-Without FILE, renders the demo scenes (the Stanford bunny, or the CGAL armadillo when the bunny
-is absent, a colored sphere, and the MRI head of Debian's mricron-data when present).
-
-.xyz files hold one point per line: "x y z" or "x y z nx ny nz"; lines starting with # are
-skipped. Points without normals get normals from their neighbors.
-
-Options (a value follows as --name VALUE or --name=VALUE):
-  --output FILE.png       image of FILE to write (default DIR/<name of FILE>.png)
-  --output-dir DIR        folder for the images (default output; output/demo for the demos)
-  --size WxH              image size in pixels (default 800x800)
-  --azimuth DEG           rotate the camera about the view up vector (default 0)
-  --elevation DEG         rotate the camera up over the focal point (default 0)
-  --zoom F                zoom factor, > 1 moves closer (default 1)
-  --view-up x,y,z         camera view up vector (default 0,1,0)
-  --view-direction x,y,z  direction the camera looks along (default 0,0,-1)
-  --backend auto|cpu|opengl
-                          rendering backend (default auto: OpenGL on a hardware GPU, the CPU
-                          under a software OpenGL renderer such as Mesa's llvmpipe)
-  --filter ewa|circular|unfiltered|approximate
-                          screen-space filter (default ewa, exact EWA; approximate is the
-                          OpenGL backend's cheaper filter, the CPU draws EWA for it)
-  --radius-scale F        vtkSurfelGenerator RadiusScale: splat radius / point spacing (default 1)
-  --cutoff F              Cutoff on the kernel exponent (default: the mapper's, 1 for surface
-                          splats, 4.5 for volumes)
-  --ordering blended|clipped|single-axis|depth-sorted
-                          volumes: vtkVolumeSplatMapper's visibility ordering (default blended)
-  --shade on|off          volumes: light the kernels by the scalar gradient (default on)
-  --color r,g,b           splat color in [0,1], replaces the data's own colors
-  --background r,g,b      background color in [0,1] (default 0.1,0.1,0.15)
-  --frames N              frames timed after one warm-up frame (default 5)
-  --help                  print this help
-
-Environment: SPLAT_DATA_DIR, the folder holding bunny.ply for the demo scenes
-(default: ../shared/data next to the source tree).
-)";
-
-struct Options
-{
-  std::string Input;
-  std::optional<std::string> Output;
-  std::optional<std::string> OutputDir;
-  int Width = 800;
-  int Height = 800;
-  double Azimuth = 0.0;
-  double Elevation = 0.0;
-  double Zoom = 1.0;
-  std::optional<Triple> ViewUp;
-  std::optional<Triple> ViewDirection;
-  double RadiusScale = 1.0;
-  std::optional<double> Cutoff;
-  int Ordering = vtkVolumeSplatMapper::BLENDED;
-  bool Shade = true;
-  int Backend = vtkSplatBackend::AUTO;
-  int FilterMode = vtkSurfaceSplatMapper::EWA;
-  std::optional<Triple> Color;
-  Triple Background = { 0.1, 0.1, 0.15 };
-  int Frames = 5;
-};
-
-double ParseNumber(const std::string& option, const std::string& text)
-{
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(value))
-  {
-    throw UsageError(option + ": '" + text + "' is not a number");
-  }
-  return value;
-}
-
-double ParsePositive(const std::string& option, const std::string& text)
-{
-  const double value = ParseNumber(option, text);
-  if (!(value > 0.0))
-  {
-    throw UsageError(option + ": expected a positive number, got '" + text + "'");
-  }
-  return value;
-}
-
-int ParseCount(const std::string& option, const std::string& text, int low, int high)
-{
-  const double value = ParseNumber(option, text);
-  if (value != std::floor(value) || value < low || value > high)
-  {
-    throw UsageError(option + ": expected a whole number from " + std::to_string(low) + " to " +
-      std::to_string(high) + ", got '" + text + "'");
-  }
-  return static_cast<int>(value);
-}
-
-Triple ParseTriple(const std::string& option, const std::string& text)
-{
-  std::vector<double> values;
-  std::istringstream fields(text);
-  std::string field;
-  while (std::getline(fields, field, ','))
-  {
-    values.push_back(ParseNumber(option, field));
-  }
-  if (values.size() != 3)
-  {
-    throw UsageError(option + ": expected three comma-separated numbers, got '" + text + "'");
-  }
-  return { values[0], values[1], values[2] };
-}
-
-Triple ParseColor(const std::string& option, const std::string& text)
-{
-  const Triple color = ParseTriple(option, text);
-  for (double c : color)
-  {
-    if (c < 0.0 || c > 1.0)
-    {
-      throw UsageError(option + ": color components must lie in [0,1], got '" + text + "'");
-    }
-  }
-  return color;
-}
-
-Triple ParseDirection(const std::string& option, const std::string& text)
-{
-  Triple direction = ParseTriple(option, text);
-  if (vtkMath::Normalize(direction.data()) == 0.0)
-  {
-    throw UsageError(option + ": the vector must not be zero");
-  }
-  return direction;
-}
-
-// The value of one of `choices`' names, case-insensitive.
-int ParseChoice(
-  const std::string& option, const std::string& text, const std::map<std::string, int>& choices)
-{
-  const auto choice = choices.find(vtksys::SystemTools::LowerCase(text));
-  if (choice == choices.end())
-  {
-    std::string names;
-    for (const auto& c : choices)
-    {
-      names += (names.empty() ? "" : ", ") + c.first;
-    }
-    throw UsageError(option + ": unknown '" + text + "' (choose from " + names + ")");
-  }
-  return choice->second;
-}
-
-// Long GNU-style options: "--name VALUE" or "--name=VALUE"; one optional input file.
-Options ParseCommandLine(int argc, char* argv[])
-{
-  Options options;
-  const std::map<std::string, splatexample::OptionHandler> handlers = {
-    { "--output",
-      [&](const std::string& name, const std::string& value)
-      {
-        if (!HasExtension(value, ".png"))
-        {
-          throw UsageError(
-            name + ": the image is written as PNG, name it *.png (got '" + value + "')");
-        }
-        options.Output = value;
-      } },
-    { "--output-dir",
-      [&](const std::string&, const std::string& value) { options.OutputDir = value; } },
-    { "--size",
-      [&](const std::string& name, const std::string& value)
-      {
-        const auto x = value.find('x');
-        if (x == std::string::npos)
-        {
-          throw UsageError(name + ": expected WxH, e.g. 800x600, got '" + value + "'");
-        }
-        options.Width = ParseCount(name, value.substr(0, x), 1, 16384);
-        options.Height = ParseCount(name, value.substr(x + 1), 1, 16384);
-      } },
-    { "--azimuth",
-      [&](const std::string& name, const std::string& value)
-      { options.Azimuth = ParseNumber(name, value); } },
-    { "--elevation",
-      [&](const std::string& name, const std::string& value)
-      { options.Elevation = ParseNumber(name, value); } },
-    { "--zoom",
-      [&](const std::string& name, const std::string& value)
-      { options.Zoom = ParsePositive(name, value); } },
-    { "--view-up",
-      [&](const std::string& name, const std::string& value)
-      { options.ViewUp = ParseDirection(name, value); } },
-    { "--view-direction",
-      [&](const std::string& name, const std::string& value)
-      { options.ViewDirection = ParseDirection(name, value); } },
-    { "--backend",
-      [&](const std::string& name, const std::string& value)
-      {
-        options.Backend = ParseChoice(name, value,
-          { { "auto", vtkSplatBackend::AUTO }, { "cpu", vtkSplatBackend::CPU },
-            { "opengl", vtkSplatBackend::OPENGL } });
-      } },
-    { "--filter",
-      [&](const std::string& name, const std::string& value)
-      {
-        options.FilterMode = ParseChoice(name, value,
-          { { "ewa", vtkSurfaceSplatMapper::EWA }, { "circular", vtkSurfaceSplatMapper::CIRCULAR },
-            { "unfiltered", vtkSurfaceSplatMapper::UNFILTERED },
-            { "approximate", vtkSurfaceSplatMapper::APPROXIMATE } });
-      } },
-    { "--radius-scale",
-      [&](const std::string& name, const std::string& value)
-      { options.RadiusScale = ParsePositive(name, value); } },
-    { "--cutoff",
-      [&](const std::string& name, const std::string& value)
-      { options.Cutoff = ParsePositive(name, value); } },
-    { "--ordering",
-      [&](const std::string& name, const std::string& value)
-      {
-        options.Ordering = ParseChoice(name, value,
-          { { "blended", vtkVolumeSplatMapper::BLENDED },
-            { "clipped", vtkVolumeSplatMapper::CLIPPED },
-            { "single-axis", vtkVolumeSplatMapper::SINGLE_AXIS },
-            { "depth-sorted", vtkVolumeSplatMapper::DEPTH_SORTED } });
-      } },
-    { "--shade",
-      [&](const std::string& name, const std::string& value)
-      { options.Shade = ParseChoice(name, value, { { "on", 1 }, { "off", 0 } }) != 0; } },
-    { "--color",
-      [&](const std::string& name, const std::string& value)
-      { options.Color = ParseColor(name, value); } },
-    { "--background",
-      [&](const std::string& name, const std::string& value)
-      { options.Background = ParseColor(name, value); } },
-    { "--frames",
-      [&](const std::string& name, const std::string& value)
-      { options.Frames = ParseCount(name, value, 1, 100000); } },
-  };
-
-  splatexample::ParseArguments(argc, argv, Usage, handlers, {},
-    [&](const std::string& argument)
-    {
-      if (!options.Input.empty())
-      {
-        throw UsageError("one input file only, got '" + options.Input + "' and '" + argument + "'");
-      }
-      options.Input = argument;
-    });
-
-  if (options.Input.empty() && options.Output)
-  {
-    throw UsageError("--output names the image of an input file; the demo scenes (no input "
-                     "file) go to --output-dir");
-  }
-  // The view up must not be parallel to the view direction; only the default one is replaced.
-  const Triple direction = options.ViewDirection.value_or(Triple{ 0.0, 0.0, -1.0 });
-  const Triple up = options.ViewUp.value_or(Triple{ 0.0, 1.0, 0.0 });
-  Triple side;
-  vtkMath::Cross(direction.data(), up.data(), side.data());
-  if (vtkMath::Norm(side.data()) < 1e-6)
-  {
-    if (options.ViewUp)
-    {
-      throw UsageError("--view-up must not be parallel to the view direction");
-    }
-    options.ViewUp = Triple{ 0.0, 0.0, 1.0 };
-  }
-  return options;
-}
 
 // A mapper drawing the surfels vtkSurfelGenerator makes from `data`.
 vtkSmartPointer<vtkSurfaceSplatMapper> SplatMapper(vtkPolyData* data, const Options& options)
