@@ -14,6 +14,7 @@
 #include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkRenderer.h"
+#include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
@@ -285,15 +286,19 @@ void vtkOpenGLVolumeSplatRasterizer::SetKernels(
   if (internal.HarmonicsDegree > 0)
   {
     // Half floats, one RGB coefficient per texel: the mapper keeps them within the half range.
-    const int stride = internal.HarmonicsStride;
-    std::vector<std::uint16_t> halves(4 * stride * n, 0);
-    for (std::size_t i = 0; i < n * stride; ++i)
-    {
-      for (int c = 0; c < 3; ++c)
+    const vtkIdType coefficients = static_cast<vtkIdType>(n) * internal.HarmonicsStride;
+    std::vector<std::uint16_t> halves(4 * coefficients, 0);
+    vtkSMPTools::For(0, coefficients,
+      [&](vtkIdType begin, vtkIdType end)
       {
-        halves[4 * i + c] = glm::packHalf1x16(kernels.SphericalHarmonics[3 * i + c]);
-      }
-    }
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          for (int c = 0; c < 3; ++c)
+          {
+            halves[4 * i + c] = glm::packHalf1x16(kernels.SphericalHarmonics[3 * i + c]);
+          }
+        }
+      });
     internal.HarmonicsBuffer->Upload(halves, vtkOpenGLBufferObject::TextureBuffer);
   }
   internal.Input = kernels;
