@@ -13,7 +13,8 @@
 // - random kernels of degree 3: CPU and OpenGL agree within MAX_BACKEND_RMSE, and the image
 //   differs from the degree-2 one by far more than that;
 // - non-finite or out-of-range coefficients are skipped and counted; an array whose component
-//   count is no degree is an error, and the color array colors the kernels.
+//   count is no degree is an error, and the color array colors the kernels, as it does when the
+//   array name is unset.
 // The bounds come from CMake (CMakeLists.txt) with the figures measured.
 #include "SplatVolumeTestUtilities.h"
 #include "vtkSplatBackend.h"
@@ -332,6 +333,10 @@ void InvalidInput()
     Check(errors->GetError() != 0, "9 coefficients: no error");
     CheckCenter(image, glm::dvec3(0.0, 0.0, 1.0), Name(backend) + " 9 coefficients: Color array");
   }
+  // Without an array name the harmonics are not used.
+  Scene unnamed(OneKernel(), vtkSplatBackend::CPU);
+  unnamed.Mapper->SetSphericalHarmonicsArrayName(nullptr);
+  CheckCenter(unnamed.View(Eyes[0]), glm::dvec3(0.0, 0.0, 1.0), "CPU no array name: Color array");
 }
 }
 
