@@ -7,7 +7,9 @@
 #include "SplatExampleUtilities.h"
 #include "SplatFileReaders.h"
 #include "SplatRenderOptions.h"
+#include "SplatVdbScenes.h"
 #include "SplatVolumeScenes.h"
+#include "vtkOpenVDBReader.h"
 #include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
@@ -269,12 +271,12 @@ vtkSmartPointer<vtkSurfaceSplatMapper> ColoredSphere(const Options& options)
 }
 
 // The transfer functions of a volume file: over the scalars' finite range, transparent in the
-// lowest fifth (background), then an opacity per voxel spacing rising to 0.1 and a color from
-// dark red through orange to white.
-vtkSmartPointer<vtkVolumeProperty> RangeProperty(vtkImageData* image)
+// lowest fifth (background), then an opacity per `unitDistance` (a voxel's spacing) rising to 0.1
+// and a color from dark red through orange to white.
+vtkSmartPointer<vtkVolumeProperty> RangeProperty(vtkDataArray* scalars, double unitDistance)
 {
   double range[2];
-  image->GetPointData()->GetScalars()->GetFiniteRange(range, 0);
+  scalars->GetFiniteRange(range, 0);
   const double span = std::max(range[1] - range[0], 1e-12);
   const double low = range[0] + 0.2 * span;
   vtkNew<vtkPiecewiseFunction> opacity;
@@ -288,7 +290,7 @@ vtkSmartPointer<vtkVolumeProperty> RangeProperty(vtkImageData* image)
   auto property = vtkSmartPointer<vtkVolumeProperty>::New();
   property->SetScalarOpacity(opacity);
   property->SetColor(color);
-  property->SetScalarOpacityUnitDistance(splatexample::SmallestSpacing(image));
+  property->SetScalarOpacityUnitDistance(unitDistance);
   return property;
 }
 
@@ -385,6 +387,25 @@ void RenderVolumeScene(vtkRenderWindow* window, vtkDataSet* kernels, vtkVolumePr
             << std::endl;
 }
 
+// Reads the grid of an OpenVDB file that `options` selects; throws when it cannot.
+vtkSmartPointer<vtkPolyData> ReadVdbGrid(const std::string& path, const Options& options)
+{
+  splatexample::RequireFile(path);
+  vtkNew<vtkOpenVDBReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetGridName(options.Grid.c_str());
+  reader->SetSurfelRadiusScale(options.RadiusScale);
+  splatexample::UpdateReader(reader, path);
+  std::cout << path << ": OpenVDB, " << reader->GetNumberOfGrids() << " grids" << std::endl;
+  for (int i = 0; i < reader->GetNumberOfGrids(); ++i)
+  {
+    std::cout << "  " << reader->GetGridName(i) << ": " << reader->GetGridClass(i) << ", "
+              << reader->GetGridValueType(i) << ", " << reader->GetGridActiveVoxelCount(i)
+              << " active voxels" << std::endl;
+  }
+  return reader->GetOutput();
+}
+
 int RenderDemoScenes(const Options& options)
 {
   const std::string folder = options.OutputDir.value_or("output/demo");
@@ -425,8 +446,55 @@ int RenderDemoScenes(const Options& options)
     std::cout << "volume scene skipped: " << splatexample::MriFile()
               << " (Debian package mricron-data) is absent\n";
   }
+  const std::string vdb = folder + "/cloud.vdb";
+  splatexample::MakeFolder(folder);
+  const splatexample::VdbScene cloud = splatexample::WriteCloudVdb(vdb, 500000);
+  std::cout << "cloud: " << cloud.ActiveVoxels << " active voxels (" << cloud.Tiles
+            << " tiles) of OpenVDB fog written to " << vdb << ", vtkOpenVDBReader and "
+            << "vtkVolumeSplatMapper" << std::endl;
+  RenderVolumeScene(window, ReadVdbGrid(vdb, options), cloud.Property, options,
+    folder + "/cloud.png",
+    [&cloud](vtkRenderer* renderer)
+    {
+      cloud.PlaceCamera(renderer->GetActiveCamera());
+      renderer->ResetCameraClippingRange();
+    });
+  ++images;
   std::cout << "Wrote " << images << " images to " << vtksys::SystemTools::CollapseFullPath(folder)
             << "\n";
+  return EXIT_SUCCESS;
+}
+
+// An OpenVDB file's grid, drawn by what the reader made of it: Gaussian kernels (fog and other
+// scalar or vector grids) through RangeProperty with a unit distance of the smallest sample's
+// width, surfels (level sets) with their own radii, or a point cloud (point grids).
+int RenderVdbFile(const Options& options, const std::string& png)
+{
+  vtkSmartPointer<vtkPolyData> data = ReadVdbGrid(options.Input, options);
+  vtkPointData* arrays = data->GetPointData();
+  if (vtkDataArray* volumes = arrays->GetArray("SampleVolume"))
+  {
+    std::cout << "grid '" << (arrays->GetScalars() ? arrays->GetScalars()->GetName() : "")
+              << "': " << data->GetNumberOfPoints()
+              << " Gaussian kernels, drawn by vtkVolumeSplatMapper" << std::endl;
+    RenderVolumeScene(MakeWindow(options), data,
+      RangeProperty(arrays->GetScalars(), std::cbrt(volumes->GetRange(0)[0])), options, png,
+      [&options, &data](vtkRenderer* renderer) { PlaceOnBulk(renderer, data, options); });
+    return EXIT_SUCCESS;
+  }
+  if (arrays->GetArray("Radius") && arrays->GetNormals())
+  {
+    std::cout << "level set: " << data->GetNumberOfPoints()
+              << " surfels on its surface, drawn as surface splats" << std::endl;
+    vtkNew<vtkSurfaceSplatMapper> mapper;
+    mapper->SetInputData(data);
+    mapper->SetRadiusArrayName("Radius");
+    RenderScene(MakeWindow(options), mapper, options, png);
+    return EXIT_SUCCESS;
+  }
+  std::cout << "point grid: " << data->GetNumberOfPoints()
+            << " points, drawn as surface splats" << std::endl;
+  RenderScene(MakeWindow(options), SplatMapper(data, options), options, png);
   return EXIT_SUCCESS;
 }
 
@@ -445,9 +513,15 @@ int RenderFile(const Options& options)
     const int* dims = image->GetDimensions();
     std::cout << options.Input << ": " << dims[0] << "x" << dims[1] << "x" << dims[2]
               << " voxels" << std::endl;
-    RenderVolumeScene(MakeWindow(options), image, RangeProperty(image), options, png,
+    RenderVolumeScene(MakeWindow(options), image,
+      RangeProperty(image->GetPointData()->GetScalars(), splatexample::SmallestSpacing(image)),
+      options, png,
       [&options](vtkRenderer* renderer) { SetUpCamera(renderer, options, 0.0); });
     return EXIT_SUCCESS;
+  }
+  if (HasExtension(options.Input, ".vdb"))
+  {
+    return RenderVdbFile(options, png);
   }
   if (IsGaussianSplatFile(options.Input))
   {

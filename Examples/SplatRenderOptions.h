@@ -35,10 +35,15 @@ per voxel, through a transfer function over the scalar range (transparent below 
 it, then more opaque and from dark red to white towards the top), shaded unless --shade off.
 A 3D Gaussian Splatting capture (.splat, or a .ply whose vertices have the 3DGS properties
 f_dc_*, opacity, scale_* and rot_*) is drawn by vtkVolumeSplatMapper as its Gaussians with
-their own colors and opacities; other .ply files are meshes or point clouds. splat_render says
-which it chose.
+their own colors and opacities; other .ply files are meshes or point clouds. An OpenVDB file
+(.vdb) is listed grid by grid and its grid (--grid, default the first one vtkOpenVDBReader
+supports) drawn by what it holds: fog volumes and other scalar or vector grids as one Gaussian
+kernel per active voxel (vtkVolumeSplatMapper, the transfer function of volume files over the
+values or the magnitude), level sets as surfels on the surface and point grids as a point cloud
+(vtkSurfaceSplatMapper). splat_render says which it chose.
 Without FILE, renders the demo scenes (the Stanford bunny, or the CGAL armadillo when the bunny
-is absent, a colored sphere, and the MRI head of Debian's mricron-data when present).
+is absent, a colored sphere, the MRI head of Debian's mricron-data when present, and a cloud
+written as an OpenVDB fog volume by the project, cloud.vdb, next to the images).
 
 .xyz files hold one point per line: "x y z" or "x y z nx ny nz"; lines starting with # are
 skipped. Points without normals get normals from their neighbors.
@@ -64,6 +69,7 @@ Options (a value follows as --name VALUE or --name=VALUE):
   --ordering blended|clipped|single-axis|depth-sorted
                           volumes: vtkVolumeSplatMapper's visibility ordering (default blended)
   --shade on|off          volumes: light the kernels by the scalar gradient (default on)
+  --grid NAME             .vdb files: the grid to draw (default the first one supported)
   --color r,g,b           splat color in [0,1], replaces the data's own colors
   --background r,g,b      background color in [0,1] (default 0.1,0.1,0.15)
   --frames N              frames timed after one warm-up frame (default 5)
@@ -89,6 +95,7 @@ struct Options
   std::optional<double> Cutoff;
   int Ordering = vtkVolumeSplatMapper::BLENDED;
   bool Shade = true;
+  std::string Grid; // of a .vdb file; empty: the reader's default
   int Backend = vtkSplatBackend::AUTO;
   int FilterMode = vtkSurfaceSplatMapper::EWA;
   std::optional<Triple> Color;
@@ -260,6 +267,7 @@ inline Options ParseCommandLine(int argc, char* argv[])
     { "--shade",
       [&](const std::string& name, const std::string& value)
       { options.Shade = ParseChoice(name, value, { { "on", 1 }, { "off", 0 } }) != 0; } },
+    { "--grid", [&](const std::string&, const std::string& value) { options.Grid = value; } },
     { "--color",
       [&](const std::string& name, const std::string& value)
       { options.Color = ParseColor(name, value); } },
