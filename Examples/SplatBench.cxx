@@ -10,8 +10,10 @@
 #include "SplatBenchCases.h"
 #include "SplatCaptureScene.h"
 #include "SplatCommandLine.h"
+#include "SplatVdbScenes.h"
 #include "SplatExampleUtilities.h"
 #include "SplatVolumeScenes.h"
+#include "vtkOpenVDBReader.h"
 #include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
@@ -89,6 +91,10 @@ at most 3 frames, the volume marked modified before each. 3dgs is a generated 3D
 Splatting capture of --kernels Gaussians flattened onto a torus (SplatCaptureScene.h: "Scale",
 "Rotation", peak "Opacity" and spherical harmonics of degree 3, evaluated for the camera every
 frame); it has no peer (VTK draws no view-dependent Gaussians), so its peer_ratio is empty.
+vdb is a cloud of --voxels active voxels of OpenVDB fog (SplatVdbScenes.h, written next to the
+CSV as cloud.vdb, tiles in its interior), read by vtkOpenVDBReader into one Gaussian kernel per
+active voxel (tiles as 2^3 kernels each) for vtkVolumeSplatMapper and into a dense image of its
+active bounding box (the reader's second output) for the ray casters; the reading is not timed.
 peer_ratio is the peer's ms_per_frame at the same scene, points and size divided by the row's
 (above 1: faster than the peer): vtkPointGaussianMapper for surfaces,
 vtkFixedPointVolumeRayCastMapper for volumes. drawn_by is the backend that drew the splat
@@ -98,10 +104,11 @@ the current resident set size (/proc/self/statm) after the case's frames minus t
 its data was built, divided by the number of points. A one-line summary per case goes to stderr.
 
 Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separated):
-  --scenes LIST        sphere, bunny, mri, gaussians, 3dgs (default all; bunny and mri are
-                       skipped when absent)
+  --scenes LIST        sphere, bunny, mri, gaussians, 3dgs, vdb (default all; bunny and mri
+                       are skipped when absent)
   --points LIST        sphere point counts (default 100000,1000000,5000000)
   --kernels N          Gaussians of the gaussians and 3dgs scenes (default 1000000)
+  --voxels N           active voxels of the vdb scene's fog (default 1000000)
   --grid N             grid points per axis of the gaussians resampled for the ray casters
                        (default 256)
   --mri-shrink N       the MRI's every N-th voxel per axis, each the mean of its N^3 block
@@ -117,7 +124,8 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
   --budget SECONDS     time a case's frames within this many seconds: after the first timed
                        frame, another is timed only while the elapsed time plus the last
                        frame's stays within the budget (default 10)
-  --quick              smoke run: 20000 sphere points, 20000 Gaussians (a 64^3 grid), the MRI
+  --quick              smoke run: 20000 sphere points, 20000 Gaussians (a 64^3 grid), 50000
+                       fog voxels, the MRI
                        shrunk by 2, 256x256, 2 frames
   --output FILE        CSV file, also written to stdout (default output/bench/bench.csv)
   --image-dir DIR      also write each case's last frame as a PNG into DIR
@@ -159,13 +167,15 @@ Options ParseCommandLine(int argc, char* argv[])
   const std::map<std::string, splatexample::OptionHandler> handlers = {
     { "--scenes",
       [&](const std::string& name, const std::string& value) {
-        options.Scenes = SplitList(name, value, { "sphere", "bunny", "mri", "gaussians", "3dgs" });
+        options.Scenes = SplitList(
+          name, value, { "sphere", "bunny", "mri", "gaussians", "3dgs", "vdb" });
       } },
     { "--points",
       [&](const std::string& name, const std::string& value)
       { options.Points = ParseCounts(name, value, 1, 100000000); } },
     { "--kernels", CountInto(options.Kernels, 1, 100000000) },
     { "--grid", CountInto(options.Grid, 8, 1024) },
+    { "--voxels", CountInto(options.Voxels, 1000, 100000000) },
     { "--mri-shrink", CountInto(options.MriShrink, 1, 16) },
     { "--sizes",
       [&](const std::string& name, const std::string& value)
@@ -194,6 +204,7 @@ Options ParseCommandLine(int argc, char* argv[])
         options.Points = { 20000 };
         options.Kernels = 20000;
         options.Grid = 64;
+        options.Voxels = 50000;
         options.MriShrink = 2;
         options.Sizes = { 256 };
         options.Frames = 2;
@@ -373,6 +384,7 @@ Scene VolumeScene(const std::string& name, vtkDataSet* kernels, vtkVolumePropert
     volume->SetMapper(splatexample::RayCaster(grid->Image, kind.Name == "gpuraycast",
       splatexample::SmallestSpacing(grid->Image)));
     volume->SetProperty(grid->Property);
+    volume->SetUserMatrix(grid->UserMatrix);
     return Stage{ volume.Get(), grid->Image };
   };
   scene.Place = [place](vtkRenderer* renderer, const Stage&) { place(renderer); };
@@ -473,6 +485,36 @@ int Run(const Options& options)
     vtkNew<vtkVolumeProperty> property;
     rows += MeasureScene(window,
       VolumeScene("3dgs", capture, property, {}, splatexample::PlaceCaptureCamera, false, options),
+      options, csv);
+  }
+  if (wants("vdb"))
+  {
+    const std::string file =
+      vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::CollapseFullPath(options.Output)) +
+      "/cloud.vdb";
+    const splatexample::VdbScene cloud =
+      splatexample::WriteCloudVdb(file, static_cast<vtkIdType>(options.Voxels));
+    std::cerr << "splat_bench: vdb: " << cloud.ActiveVoxels << " active voxels (" << cloud.Tiles
+              << " tiles) in " << file << "\n";
+    vtkNew<vtkOpenVDBReader> reader;
+    reader->SetFileName(file.c_str());
+    reader->ProduceDenseOutputOn();
+    reader->Update();
+    vtkSmartPointer<vtkPolyData> kernels = reader->GetOutput();
+    vtkSmartPointer<vtkImageData> dense = reader->GetDenseOutput();
+    if (kernels->GetNumberOfPoints() == 0 || dense->GetNumberOfPoints() == 0)
+    {
+      throw std::runtime_error("vtkOpenVDBReader could not read " + file);
+    }
+    rows += MeasureScene(window,
+      VolumeScene("vdb", kernels, cloud.Property,
+        [&]() { return splatexample::AxisAlignedGrid(dense, cloud.Property); },
+        [&cloud](vtkRenderer* renderer)
+        {
+          cloud.PlaceCamera(renderer->GetActiveCamera());
+          renderer->ResetCameraClippingRange();
+        },
+        true, options),
       options, csv);
   }
   std::cerr << "splat_bench: " << rows << " rows; CSV written to "

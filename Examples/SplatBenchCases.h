@@ -44,10 +44,11 @@ namespace splatbench
 {
 struct Options
 {
-  std::vector<std::string> Scenes = { "sphere", "bunny", "mri", "gaussians", "3dgs" };
+  std::vector<std::string> Scenes = { "sphere", "bunny", "mri", "gaussians", "3dgs", "vdb" };
   std::vector<long long> Points = { 100000, 1000000, 5000000 };
   long long Kernels = 1000000;
   long long Grid = 256;
+  long long Voxels = 1000000; // of the vdb scene
   int MriShrink = 1;
   std::vector<long long> Sizes = { 512, 1024 };
   std::vector<std::string> Mappers = { "splat", "pointgaussian", "fixedpoint", "gpuraycast" };

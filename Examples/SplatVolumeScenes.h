@@ -28,6 +28,7 @@
 #include "vtkImageShrink3D.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
@@ -412,12 +413,15 @@ struct GaussianMixture
 /// The mixture of a point set with a 6-component "Covariance" array and scalars through the
 /// property's opacity transfer function (as a peak extinction), colored by a "Color" array
 /// (unsigned char) or else the color transfer function: vtkVolumeSplatMapper's reading of such
-/// input (kernels of zero extinction are left out).
+/// input (kernels of zero extinction are left out). With a "SampleVolume" array (kernels that
+/// sample a field, as vtkOpenVDBReader's) the transfer function's extinction times the sample
+/// volume is the kernel's integral, as the mapper reads it, instead of its peak.
 inline GaussianMixture MixtureOf(vtkPolyData* input, vtkVolumeProperty* property)
 {
   vtkDataArray* covariances = input->GetPointData()->GetArray("Covariance");
   vtkDataArray* scalars = input->GetPointData()->GetScalars();
   vtkDataArray* colors = input->GetPointData()->GetArray("Color");
+  vtkDataArray* sampleVolumes = input->GetPointData()->GetArray("SampleVolume");
   if (!covariances || covariances->GetNumberOfComponents() != 6 || !scalars)
   {
     throw std::runtime_error("the Gaussian mixture needs a Covariance array and scalars");
@@ -442,6 +446,11 @@ inline GaussianMixture MixtureOf(vtkPolyData* input, vtkVolumeProperty* property
     vtkMath::Diagonalize3x3(V, eigenvalues, eigenvectors);
     k.Inverse = { inverse[0][0], inverse[0][1], inverse[0][2], inverse[1][1], inverse[1][2],
       inverse[2][2] };
+    if (sampleVolumes)
+    {
+      k.Peak *= sampleVolumes->GetComponent(i, 0) /
+        (splat::TwoPiToThreeHalves * std::sqrt(vtkMath::Determinant3x3(V)));
+    }
     k.Sigma = { std::sqrt(c[0]), std::sqrt(c[3]), std::sqrt(c[5]) };
     k.LargestSigma = std::sqrt(std::max({ eigenvalues[0], eigenvalues[1], eigenvalues[2] }));
     mixture.SmallestSigma = std::min(mixture.SmallestSigma,
@@ -465,12 +474,44 @@ inline GaussianMixture MixtureOf(vtkPolyData* input, vtkVolumeProperty* property
   return mixture;
 }
 
-/// A grid for the ray casters and the property that draws it.
+/// A grid for the ray casters, the property that draws it and, when not null, the matrix of the
+/// vtkVolume that draws it (see AxisAlignedGrid).
 struct ResampledVolume
 {
   vtkSmartPointer<vtkImageData> Image;
   vtkSmartPointer<vtkVolumeProperty> Property;
+  vtkSmartPointer<vtkMatrix4x4> UserMatrix;
 };
+
+/// `image` for both ray casters: VTK 9.1's vtkFixedPointVolumeRayCastMapper ignores an image's
+/// direction matrix (vtkGPUVolumeRayCastMapper honors it), so a rotated grid becomes a shallow
+/// copy with the identity direction, placed back by the volume's user matrix: the direction's
+/// rotation about the image's origin.
+inline ResampledVolume AxisAlignedGrid(vtkImageData* image, vtkVolumeProperty* property)
+{
+  ResampledVolume grid{ image, property, nullptr };
+  vtkMatrix3x3* direction = image->GetDirectionMatrix();
+  if (direction->IsIdentity())
+  {
+    return grid;
+  }
+  grid.Image = vtkSmartPointer<vtkImageData>::New();
+  grid.Image->ShallowCopy(image);
+  grid.Image->SetDirectionMatrix(1, 0, 0, 0, 1, 0, 0, 0, 1);
+  const double* origin = image->GetOrigin();
+  grid.UserMatrix = vtkSmartPointer<vtkMatrix4x4>::New();
+  for (int row = 0; row < 3; ++row)
+  {
+    double shift = origin[row];
+    for (int column = 0; column < 3; ++column)
+    {
+      grid.UserMatrix->SetElement(row, column, direction->GetElement(row, column));
+      shift -= direction->GetElement(row, column) * origin[column];
+    }
+    grid.UserMatrix->SetElement(row, 3, shift);
+  }
+  return grid;
+}
 
 /// The mixture sampled at the points of an n^3 grid over [-1, 1]^3 (each kernel evaluated within
 /// 4 standard deviations along each axis), as VTK's ray casters can draw it: unsigned char RGBA
