@@ -250,18 +250,18 @@ public:
   vtkTypeInt64 FileSize() const { return this->Size; }
   int Line() const { return this->LineNumber; }
 
-  // At least min(n, what is left) bytes from the current position; returns how many.
+  // Makes min(n, what is left) bytes from the current position available; returns how many.
   std::size_t Fill(std::size_t n)
   {
     if (this->End - this->Begin < n)
     {
-      std::memmove(this->Buffer.data(), this->Buffer.data() + this->Begin, this->End - this->Begin);
-      this->End -= this->Begin;
-      this->Begin = 0;
       if (this->Buffer.size() < std::max(n, BlockSize))
       {
         this->Buffer.resize(std::max(n, BlockSize));
       }
+      std::memmove(this->Buffer.data(), this->Buffer.data() + this->Begin, this->End - this->Begin);
+      this->End -= this->Begin;
+      this->Begin = 0;
       this->End += std::fread(
         this->Buffer.data() + this->End, 1, this->Buffer.size() - this->End, this->File);
     }
