@@ -15,7 +15,8 @@
 //   reference are in SplatCheckerboardScene.h, shared with TestSurfaceSplatCheckerboardError.
 // - bunny: the Stanford bunny mesh; the reference is the mesh drawn by vtkPolyDataMapper at 4x4
 //   supersampling (4x the size, 4x4 blocks averaged); the splats come from vtkSurfelGenerator.
-// - mri, gaussians: volumes (SplatVolumeScenes.h) drawn by vtkVolumeSplatMapper in every ordering
+// - mri, gaussians, vdb: volumes (SplatVolumeScenes.h, SplatVdbScenes.h) drawn by
+//   vtkVolumeSplatMapper in every ordering
 //   mode and with other cutoffs, and by VTK's ray casters; the reference integrates the same
 //   Gaussian mixture by fine ray marching (SplatVolumeReference.h).
 //
@@ -26,8 +27,10 @@
 #include "SplatReportCases.h"
 #include "SplatReportImages.h"
 #include "SplatReportOutput.h"
+#include "SplatVdbScenes.h"
 #include "SplatVolumeReference.h"
 #include "SplatVolumeScenes.h"
+#include "vtkOpenVDBReader.h"
 #include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
@@ -100,6 +103,9 @@ variance), offscreen, and measures each image against a reference:
                 --mri-shrink (vtkImageShrink3D, block means), in TestVolumeSplatCrossRenderer's
                 transfer functions and camera
   gaussians     --kernels random anisotropic 3D Gaussians in the unit ball (fixed seed)
+  vdb           a cloud of --voxels active voxels of OpenVDB fog on a rotated, non-uniformly
+                scaled grid (SplatVdbScenes.h), written as cloud.vdb into the output folder and
+                read by vtkOpenVDBReader: its kernels, and its dense copy for the ray casters
 The volume scenes (--volume-size pixels square, black background) are drawn by
 vtkVolumeSplatMapper in every ordering mode (blended is the default), with cutoffs 2 and 8 (the
 default 4.5 aside), and by vtkFixedPointVolumeRayCastMapper (a sample every voxel spacing and
@@ -121,7 +127,7 @@ absolute difference) for every case. Prints the tables.
 
 Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separated):
   --output-dir DIR   output folder (default $SPLAT_OUTPUT_DIR/report, else output/report)
-  --scenes LIST      checkerboard, bunny, mri, gaussians (default all; bunny and mri are
+  --scenes LIST      checkerboard, bunny, mri, gaussians, vdb (default all; bunny and mri are
                      skipped when absent)
   --backends LIST    the splat mappers' backends: cpu, opengl (default: both for the surface
                      scenes, cpu for the volume scenes; a list given here applies to both;
@@ -135,6 +141,7 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
   --volume-size N    the volume scenes' image size, N x N pixels (default 256)
   --mri-shrink N     the MRI's every N-th voxel per axis (default 2)
   --kernels N        Gaussians of the gaussians scene (default 2000)
+  --voxels N         active voxels of the vdb scene's fog (default 100000)
   --grid N           grid points per axis of the gaussians resampled for the ray casters
                      (default 128)
   --quick            smoke run: 256x192, 100000 surfels, 8 sub-samples, 1 round of 2 frames;
@@ -169,7 +176,7 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--scenes",
       [&](const std::string& name, const std::string& value) {
         options.Scenes = splatexample::SplitList(
-          name, value, { "checkerboard", "bunny", "mri", "gaussians" });
+          name, value, { "checkerboard", "bunny", "mri", "gaussians", "vdb" });
       } },
     { "--backends",
       [&](const std::string& name, const std::string& value) {
@@ -193,6 +200,7 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--volume-size", CountInto(options.VolumeSize, 16, 4096) },
     { "--mri-shrink", CountInto(options.MriShrink, 1, 16) },
     { "--kernels", CountInto(options.Kernels, 1, 10000000) },
+    { "--voxels", CountInto(options.Voxels, 1000, 100000000) },
     { "--grid", CountInto(options.Grid, 8, 1024) },
     { "--samples", CountInto(options.Samples, 1, 64) },
   };
@@ -208,6 +216,7 @@ Options ParseCommandLine(int argc, char* argv[])
         options.VolumeSize = 128;
         options.MriShrink = 4;
         options.Kernels = 500;
+        options.Voxels = 20000;
         options.Grid = 64;
       } },
   };
@@ -303,6 +312,7 @@ PropMaker VolumeProps(const VolumeInputs& inputs)
     vtkNew<vtkVolume> volume;
     volume->SetMapper(c.MakeVolume(inputs));
     volume->SetProperty(IsOurs(c) ? inputs.Property : inputs.GridProperty);
+    volume->SetUserMatrix(IsOurs(c) ? nullptr : inputs.GridMatrix);
     return volume.Get();
   };
 }
@@ -665,7 +675,7 @@ int Run(const Options& options)
       splatexample::PlaceMriCamera(renderer, head);
       const splatexample::GridField field(head, property);
       const VolumeSceneResult result = MeasureVolumeScene(window, renderer, "mri",
-        { head, property, head, property }, field, volumeCases, options, notes);
+        { head, property, head, property, nullptr }, field, volumeCases, options, notes);
       rows.insert(rows.end(), result.Rows.begin(), result.Rows.end());
       scenes.push_back("mri");
       int dims[3];
@@ -705,7 +715,8 @@ int Run(const Options& options)
     splatexample::PlaceGaussiansCamera(renderer);
     const splatexample::MixtureField field(mixture);
     const VolumeSceneResult result = MeasureVolumeScene(window, renderer, "gaussians",
-      { kernels, property, grid.Image, grid.Property }, field, gaussiansCases, options, notes);
+      { kernels, property, grid.Image, grid.Property, nullptr }, field, gaussiansCases, options,
+      notes);
     rows.insert(rows.end(), result.Rows.begin(), result.Rows.end());
     scenes.push_back("gaussians");
     md << "## gaussians\n\n"
@@ -719,6 +730,48 @@ int Run(const Options& options)
        << "color, A the extinction in 255 steps), so their error also holds that resampling "
        << "and quantization; vtkGPUVolumeRayCastMapper is left out here: VTK 9.1's draws that "
        << "grid nearly transparent.\n\n"
+       << MarkdownTable(result.Rows, "Gaussian-filtered reference") << "\n";
+  }
+  if (wants("vdb"))
+  {
+    const std::string file = options.OutputDir + "/cloud.vdb";
+    const splatexample::VdbScene cloud =
+      splatexample::WriteCloudVdb(file, static_cast<vtkIdType>(options.Voxels));
+    vtkNew<vtkOpenVDBReader> reader;
+    reader->SetFileName(file.c_str());
+    reader->ProduceDenseOutputOn();
+    reader->Update();
+    vtkPolyData* kernels = reader->GetOutput();
+    if (kernels->GetNumberOfPoints() == 0)
+    {
+      throw std::runtime_error("vtkOpenVDBReader could not read " + file);
+    }
+    const splatexample::ResampledVolume grid =
+      splatexample::AxisAlignedGrid(reader->GetDenseOutput(), cloud.Property);
+    window->SetSize(options.VolumeSize, options.VolumeSize);
+    cloud.PlaceCamera(renderer->GetActiveCamera());
+    renderer->ResetCameraClippingRange(kernels->GetBounds());
+    const splatexample::GaussianMixture mixture = splatexample::MixtureOf(kernels, cloud.Property);
+    const splatexample::MixtureField field(mixture);
+    const VolumeSceneResult result = MeasureVolumeScene(window, renderer, "vdb",
+      { kernels, cloud.Property, grid.Image, grid.Property, grid.UserMatrix }, field, volumeCases,
+      options, notes);
+    rows.insert(rows.end(), result.Rows.begin(), result.Rows.end());
+    scenes.push_back("vdb");
+    int dims[3];
+    grid.Image->GetDimensions(dims);
+    md << "## vdb\n\n"
+       << "A cloud of " << cloud.ActiveVoxels << " active voxels of OpenVDB fog ("
+       << cloud.ActiveVoxels - cloud.LeafVoxels << " of them, inside, stored as " << cloud.Tiles
+       << " active tiles; `SplatVdbScenes.h`) on a rotated, non-uniformly scaled grid, written to "
+       << "`cloud.vdb` and read by vtkOpenVDBReader: " << kernels->GetNumberOfPoints()
+       << " kernels (one per stored voxel, 2^3 per tile, each with the voxel's Gaussian and its "
+       << "sample volume), " << options.VolumeSize << "x" << options.VolumeSize << " pixels. "
+       << VolumeReferenceText(result, "the reader's kernels (tau(density) times the sample volume)")
+       << " The ray casters draw the reader's dense copy of the grid (" << dims[0] << "x"
+       << dims[1] << "x" << dims[2] << " voxels over the active bounding box, the rotation as "
+       << "the volume's matrix: VTK 9.1's vtkFixedPointVolumeRayCastMapper ignores an image's "
+       << "direction matrix).\n\n"
        << MarkdownTable(result.Rows, "Gaussian-filtered reference") << "\n";
   }
   if (rows.empty())

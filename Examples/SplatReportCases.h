@@ -35,12 +35,13 @@ namespace splatreport
 struct Options
 {
   std::string OutputDir;
-  std::vector<std::string> Scenes = { "checkerboard", "bunny", "mri", "gaussians" };
+  std::vector<std::string> Scenes = { "checkerboard", "bunny", "mri", "gaussians", "vdb" };
   std::vector<std::string> Backends = { "cpu", "opengl" };
   std::vector<std::string> VolumeBackends = { "cpu" }; // --backends sets both
   int VolumeSize = 256;
   int MriShrink = 2;
   long long Kernels = 2000;
+  long long Voxels = 100000;
   int Grid = 128;
   int Width = 512;
   int Height = 384;
@@ -146,6 +147,7 @@ struct VolumeInputs
   vtkVolumeProperty* Property;
   vtkImageData* Grid;
   vtkVolumeProperty* GridProperty;
+  vtkMatrix4x4* GridMatrix; // the ray casters' volume matrix (null: identity)
 };
 
 struct Case
