@@ -15,13 +15,13 @@
 #include "SplatVolumeScenes.h"
 #include "vtkOpenVDBReader.h"
 #include "vtkSplatBackend.h"
+#include "vtkSplatPLYReader.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
 #include "vtkSurfelSphereSource.h"
 
 #include "vtkActor.h"
 #include "vtkNew.h"
-#include "vtkPLYReader.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
@@ -228,7 +228,7 @@ vtkSmartPointer<vtkPolyData> UnitSphere(vtkIdType n)
 // The bunny's vertices as surfels.
 vtkSmartPointer<vtkPolyData> BunnySurfels(const std::string& file)
 {
-  vtkNew<vtkPLYReader> reader;
+  vtkNew<vtkSplatPLYReader> reader;
   reader->SetFileName(file.c_str());
   vtkNew<vtkSurfelGenerator> surfels;
   surfels->SetInputConnection(reader->GetOutputPort());
@@ -420,7 +420,7 @@ int Run(const Options& options)
   if (wants("bunny"))
   {
     const std::string bunny = splatexample::BunnyFile();
-    if (vtkPLYReader::CanReadFile(bunny.c_str()))
+    if (vtkSplatPLYReader::CanReadFile(bunny.c_str()))
     {
       // The bunny has holes (its base): no backface setting.
       rows += MeasureScene(window,

@@ -32,6 +32,7 @@
 #include "SplatVolumeScenes.h"
 #include "vtkOpenVDBReader.h"
 #include "vtkSplatBackend.h"
+#include "vtkSplatPLYReader.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
 
@@ -40,7 +41,6 @@
 #include "vtkCleanPolyData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
-#include "vtkPLYReader.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkPolyDataNormals.h"
@@ -229,12 +229,12 @@ Options ParseCommandLine(int argc, char* argv[])
 vtkSmartPointer<vtkPolyData> BunnyMesh()
 {
   const std::string file = splatexample::BunnyFile();
-  if (!vtkPLYReader::CanReadFile(file.c_str()))
+  if (!vtkSplatPLYReader::CanReadFile(file.c_str()))
   {
     std::cerr << "splat_report: bunny scene skipped: " << file << " is absent or unreadable\n";
     return nullptr;
   }
-  vtkNew<vtkPLYReader> reader;
+  vtkNew<vtkSplatPLYReader> reader;
   reader->SetFileName(file.c_str());
   // The scan has vertices that no triangle uses (vtkSurfelGenerator gives them no radius):
   // dropped, so triangles and surfels cover the same surface.
