@@ -16,13 +16,15 @@ else ()
   # VTK's Python, for the `splat` package (Wrapping/Python), found here because VTK::Python's
   # Python3::Module must be visible where VTK's targets are. Debian's VTK is wrapped for the
   # system interpreter: another python3 earlier on PATH (pyenv, a virtual environment) cannot
-  # import its vtkmodules.
+  # import its vtkmodules. VTK_LIBRARIES (the tests link it) keeps the first call's list.
   if (VTK_WRAP_PYTHON AND NOT DEFINED Python3_EXECUTABLE
       AND EXISTS "${VTK_PREFIX_PATH}/bin/python3")
     set(Python3_EXECUTABLE "${VTK_PREFIX_PATH}/bin/python3" CACHE FILEPATH
       "The Python interpreter VTK is wrapped for")
   endif ()
+  set(splat_vtk_libraries "${VTK_LIBRARIES}")
   find_package(VTK OPTIONAL_COMPONENTS Python WrappingPythonCore)
+  set(VTK_LIBRARIES "${splat_vtk_libraries}")
 endif ()
 
 # GLM: the VTK-free math shared by the CPU rasterizer, the filters and the tests (header only).
