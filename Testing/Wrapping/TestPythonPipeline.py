@@ -1,8 +1,10 @@
 """The Python front door, in Debian's /usr/bin/python3 with Debian's VTK: the wrapped pipeline
 (Examples/surface_splat_pipeline.py) renders a non-trivial image equal to the C++ pipeline's
-(surface_splat_pipeline) on the same PLY, and a fresh interpreter still imports `vtk`.
+(surface_splat_pipeline) on the same PLY, the volume example (Examples/volume_splat_pipeline.py)
+renders VTK's wavelet, and a fresh interpreter still imports `vtk`.
 
-    TestPythonPipeline.py --example surface_splat_pipeline.py --cxx-pipeline EXE --output DIR
+    TestPythonPipeline.py --example surface_splat_pipeline.py --cxx-pipeline EXE
+                          --volume-example volume_splat_pipeline.py --output DIR
 
 Exits 125 (skipped) when this interpreter cannot import vtkmodules.
 """
@@ -19,8 +21,10 @@ except ImportError as error:
     sys.exit(125)
 
 from vtkmodules.vtkFiltersSources import vtkSphereSource
+from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
 from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.vtkIOPLY import vtkPLYWriter
+from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
 
 from splat import vtkSplatBackend
 
@@ -31,6 +35,26 @@ def check(condition, message):
     print("%s %s" % ("ok  " if condition else "FAIL", message), flush=True)
     if not condition:
         failures.append(message)
+
+
+def load(path, name):
+    """The example program at path, imported as a module."""
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def coverage(pixels, components):
+    """The number of pixels that are not black, and the set of their distinct colors."""
+    covered = 0
+    colors = set()
+    for i in range(0, len(pixels), components):
+        rgb = pixels[i:i + 3]
+        if any(rgb):
+            covered += 1
+            colors.add(rgb)
+    return covered, colors
 
 
 def read_rgb(path):
@@ -48,6 +72,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--example", required=True)
     parser.add_argument("--cxx-pipeline", required=True)
+    parser.add_argument("--volume-example", required=True)
     parser.add_argument("--output", required=True)
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
@@ -64,9 +89,7 @@ def main():
     points = sphere.GetOutput().GetNumberOfPoints()
 
     # The Python pipeline, imported from the example file.
-    spec = importlib.util.spec_from_file_location("surface_splat_pipeline", args.example)
-    example = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(example)
+    example = load(args.example, "surface_splat_pipeline")
     python_png = os.path.join(args.output, "TestPythonPipeline-python.png")
     mapper = example.render(ply, python_png)
     backend = mapper.GetLastBackend()
@@ -81,13 +104,7 @@ def main():
 
     width, height, pixels, components = read_rgb(python_png)
     check((width, height) == (800, 800), "the image is 800 x 800 (%d x %d)" % (width, height))
-    covered = 0
-    levels = set()
-    for i in range(0, len(pixels), components):
-        rgb = pixels[i:i + 3]
-        if any(rgb):
-            covered += 1
-            levels.add(rgb)
+    covered, levels = coverage(pixels, components)
     fraction = covered / float(width * height)
     # Measured: 0.196 of the pixels covered (the disc of radius 200 pixels that ResetCamera
     # gives) and 204 distinct shades.
@@ -104,6 +121,28 @@ def main():
         # Measured: 0 bytes differ (the bunny too).
         check(cxx[:2] == (width, height) and differing == 0,
               "Python and C++ images equal (%d bytes differ)" % differing)
+
+    # The volume example on VTK's wavelet (21^3 voxels) as a .vti file.
+    vti = os.path.join(args.output, "TestPythonPipeline.vti")
+    wavelet = vtkRTAnalyticSource()
+    wavelet.SetWholeExtent(-10, 10, -10, 10, -10, 10)
+    image_writer = vtkXMLImageDataWriter()
+    image_writer.SetFileName(vti)
+    image_writer.SetInputConnection(wavelet.GetOutputPort())
+    check(image_writer.Write() == 1, "wrote %s" % vti)
+    volume_png = os.path.join(args.output, "TestPythonPipeline-volume.png")
+    volume_mapper = load(args.volume_example, "volume_splat_pipeline").render(vti, volume_png)
+    kernels = volume_mapper.GetNumberOfKernels()
+    transparent = volume_mapper.GetNumberOfTransparentKernels()
+    # Measured: 8785 kernels, 476 voxels left out as transparent (the lowest fifth of the range).
+    check(kernels > 0 and kernels + transparent == 21 ** 3,
+          "%d kernels and %d transparent voxels make the 21^3 grid" % (kernels, transparent))
+    width, height, pixels, components = read_rgb(volume_png)
+    covered, colors = coverage(pixels, components)
+    fraction = covered / float(width * height)
+    # Measured: 0.356 of the pixels covered (any non-black value), 904 distinct colors.
+    check(0.1 < fraction < 0.9, "the wavelet covers %.3f of the image" % fraction)
+    check(len(colors) > 50, "%d distinct colors in the volume" % len(colors))
 
     # The system's own VTK Python still works: a fresh interpreter without this build's path.
     environment = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
