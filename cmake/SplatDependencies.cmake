@@ -13,10 +13,10 @@ if (SPLAT_BUILD_PARAVIEW_PLUGIN)
   find_package(VTK REQUIRED COMPONENTS ${splat_vtk_components})
 else ()
   find_package(VTK 9.1 REQUIRED COMPONENTS ${splat_vtk_components})
-  # VTK's Python, for the `splat` package (Wrapping/Python), found here because VTK::Python's
-  # Python3::Module must be visible where VTK's targets are. Debian's VTK is wrapped for the
-  # system interpreter: another python3 earlier on PATH (pyenv, a virtual environment) cannot
-  # import its vtkmodules. VTK_LIBRARIES (the tests link it) keeps the first call's list.
+  # VTK's Python, for the `splat` package (SplatPythonWrapping.cmake), found here because
+  # VTK::Python's Python3::Module must be visible where VTK's targets are. Debian's VTK is wrapped
+  # for the system interpreter: another python3 earlier on PATH (pyenv, a virtual environment)
+  # cannot import its vtkmodules. VTK_LIBRARIES (the tests link it) keeps the first call's list.
   if (VTK_WRAP_PYTHON AND NOT DEFINED Python3_EXECUTABLE
       AND EXISTS "${VTK_PREFIX_PATH}/bin/python3")
     set(Python3_EXECUTABLE "${VTK_PREFIX_PATH}/bin/python3" CACHE FILEPATH

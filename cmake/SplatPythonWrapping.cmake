@@ -1,5 +1,5 @@
-# Python wrapping of the Splat modules with VTK's own wrapping (system VTK build only), as the
-# package `splat` next to VTK's `vtkmodules`:
+# Python wrapping of the Splat modules with VTK's own wrapping (system VTK build only, included
+# from the top CMakeLists.txt), as the package `splat` next to VTK's `vtkmodules`:
 #   <build>/lib/python3/dist-packages/splat/__init__.py        imports every class below
 #   <build>/lib/python3/dist-packages/splat/SplatRendering*.so  one extension module per VTK module
 # Put <build>/lib/python3/dist-packages on PYTHONPATH and run the Python that VTK was wrapped for
