@@ -6,6 +6,8 @@
 #ifndef SplatFileReaders_h
 #define SplatFileReaders_h
 
+#include "SplatFileChecks.h"
+
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
@@ -14,6 +16,7 @@
 #include "vtkFloatArray.h"
 #include "vtkGaussianSplatReader.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkMetaImageReader.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
@@ -21,6 +24,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkSplatPLYReader.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLPolyDataReader.h"
@@ -29,6 +33,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -198,9 +203,15 @@ inline void RequireFile(const std::string& path)
   }
 }
 
-// Updates `reader` (one of this project's readers, which set an error code and name the file in
-// their messages); throws with the reader's own message when it fails, instead of printing it.
-inline void UpdateReader(vtkAlgorithm* reader, const std::string& path)
+// Updates `reader` and throws with the reader's first error message (prefixed with the file's
+// name when the message lacks it) when it reports one: this project's readers set an error
+// code, and some of VTK's print an error and still hand over an output with ErrorCode unset
+// (vtkMetaImageReader gives a one-voxel image for a file it cannot parse). The pipeline
+// information is updated first, and `checkInformation` run on it, because a failed
+// RequestInformation does not stop RequestData (vtkNIFTIImageReader then reads into no
+// buffer). Exceptions thrown inside a reader come back as std::runtime_error naming the file.
+inline void UpdateReader(vtkAlgorithm* reader, const std::string& path,
+  const std::function<void()>& checkInformation = nullptr)
 {
   std::string message;
   vtkNew<vtkCallbackCommand> errors;
@@ -218,14 +229,69 @@ inline void UpdateReader(vtkAlgorithm* reader, const std::string& path)
         first->erase(first->find_last_not_of(" \n") + 1);
       }
     });
+  auto check = [&]()
+  {
+    if (reader->GetErrorCode() != vtkErrorCode::NoError || !message.empty())
+    {
+      reader->RemoveObservers(vtkCommand::ErrorEvent);
+      reader->GetExecutive()->RemoveObservers(vtkCommand::ErrorEvent);
+      throw std::runtime_error(message.find(path) != std::string::npos
+          ? message
+          : "reading '" + path + "' failed" + (message.empty() ? "" : ": " + message));
+    }
+  };
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
-  reader->Update();
+  try
+  {
+    reader->UpdateInformation();
+    check();
+    if (checkInformation)
+    {
+      checkInformation();
+    }
+    reader->Update();
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw;
+  }
+  catch (const std::runtime_error&)
+  {
+    throw;
+  }
+  catch (const std::exception& e)
+  {
+    message = e.what();
+  }
+  check();
   reader->RemoveObservers(vtkCommand::ErrorEvent);
   reader->GetExecutive()->RemoveObservers(vtkCommand::ErrorEvent);
-  if (reader->GetErrorCode() != vtkErrorCode::NoError || !message.empty())
+}
+
+// Throws unless every point-data array has one tuple per point and every cell's point ids are
+// in range: what the mappers index without checking.
+inline void CheckPolyData(vtkPolyData* data, const std::string& path)
+{
+  const vtkIdType n = data->GetNumberOfPoints();
+  for (int a = 0; a < data->GetPointData()->GetNumberOfArrays(); ++a)
   {
-    throw std::runtime_error(message.empty() ? "reading '" + path + "' failed" : message);
+    vtkAbstractArray* array = data->GetPointData()->GetAbstractArray(a);
+    if (array->GetNumberOfTuples() != n)
+    {
+      throw std::runtime_error("'" + path + "': point array '" +
+        (array->GetName() ? array->GetName() : "") + "' does not have one value per point");
+    }
+  }
+  for (vtkCellArray* cells :
+    { data->GetVerts(), data->GetLines(), data->GetPolys(), data->GetStrips() })
+  {
+    double range[2];
+    if (cells && cells->GetNumberOfConnectivityIds() > 0 &&
+      (cells->GetConnectivityArray()->GetRange(range, 0), range[0] < 0 || range[1] >= n))
+    {
+      throw std::runtime_error("'" + path + "' has cells with point ids out of range");
+    }
   }
 }
 
@@ -244,16 +310,9 @@ inline vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
   else if (HasExtension(path, ".vtp"))
   {
     vtkNew<vtkXMLPolyDataReader> reader;
-    if (!reader->CanReadFile(path.c_str()))
-    {
-      throw std::runtime_error("'" + path + "' is not a VTK XML PolyData file");
-    }
+    XMLFileCheck(path, "PolyData");
     reader->SetFileName(path.c_str());
-    reader->Update();
-    if (reader->GetErrorCode() != vtkErrorCode::NoError)
-    {
-      throw std::runtime_error("reading '" + path + "' failed");
-    }
+    UpdateReader(reader, path);
     data = reader->GetOutput();
   }
   else if (HasExtension(path, ".xyz"))
@@ -274,6 +333,7 @@ inline vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
   {
     throw std::runtime_error("'" + path + "' holds no points");
   }
+  CheckPolyData(data, path);
   return data;
 }
 
@@ -324,18 +384,17 @@ inline vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path)
 {
   RequireFile(path);
   vtkSmartPointer<vtkAlgorithm> reader;
+  std::function<void()> checkInformation;
   if (HasExtension(path, ".vti"))
   {
+    XMLFileCheck(path, "ImageData");
     auto xml = vtkSmartPointer<vtkXMLImageDataReader>::New();
-    if (!xml->CanReadFile(path.c_str()))
-    {
-      throw std::runtime_error("'" + path + "' is not a VTK XML ImageData file");
-    }
     xml->SetFileName(path.c_str());
     reader = xml;
   }
   else if (HasExtension(path, ".mhd") || HasExtension(path, ".mha"))
   {
+    CheckMetaImageHeader(path);
     auto meta = vtkSmartPointer<vtkMetaImageReader>::New();
     meta->SetFileName(path.c_str());
     reader = meta;
@@ -349,11 +408,33 @@ inline vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path)
     }
     nifti->SetFileName(path.c_str());
     reader = nifti;
+    // The header's size, type and components against what the file (or, gzipped, at most
+    // 1032 times its size: deflate's limit) can hold, before the reader allocates them.
+    checkInformation = [&]()
+    {
+      vtkInformation* info = reader->GetOutputInformation(0);
+      vtkInformation* scalars = vtkDataObject::GetActiveFieldInformation(
+        info, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+      const int* extent = info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+      double bytes = scalars && scalars->Has(vtkDataObject::FIELD_ARRAY_TYPE())
+        ? vtkAbstractArray::GetDataTypeSize(scalars->Get(vtkDataObject::FIELD_ARRAY_TYPE())) *
+          double(scalars->Get(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS()))
+        : 0;
+      for (int axis = 0; axis < 3 && extent; ++axis)
+      {
+        bytes *= double(extent[2 * axis + 1]) - extent[2 * axis] + 1;
+      }
+      const double stored = static_cast<double>(vtksys::SystemTools::FileLength(path));
+      if (!extent || !(bytes > 0) || bytes > stored * (HasExtension(path, ".gz") ? 1032 : 1))
+      {
+        throw std::runtime_error("'" + path + "': the NIFTI header's dimensions or data type "
+                                              "do not fit the file");
+      }
+    };
   }
-  reader->Update();
+  UpdateReader(reader, path, checkInformation);
   auto* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
-  if (reader->GetErrorCode() != vtkErrorCode::NoError || !image ||
-    image->GetNumberOfPoints() == 0 || !image->GetPointData()->GetScalars())
+  if (!image || image->GetNumberOfPoints() == 0 || !image->GetPointData()->GetScalars())
   {
     throw std::runtime_error("reading '" + path + "' gave no image with point scalars");
   }
