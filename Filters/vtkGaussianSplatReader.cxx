@@ -141,6 +141,12 @@ bool vtkGaussianSplatReader::IsGaussianSplatFile(const char* fileName)
 }
 
 //------------------------------------------------------------------------------
+int vtkGaussianSplatReader::CanReadFile(const char* fileName)
+{
+  return vtkGaussianSplatReader::IsGaussianSplatFile(fileName) ? 1 : 0;
+}
+
+//------------------------------------------------------------------------------
 void vtkGaussianSplatReader::Fail(int errorCode, const std::string& what)
 {
   vtkErrorMacro(<< this->FileName << ": " << what);

@@ -66,6 +66,12 @@ public:
   static bool IsGaussianSplatFile(const char* fileName);
 
   /**
+   * IsGaussianSplatFile under the name and type of VTK readers' CanReadFile: ParaView's reader
+   * factory calls it, so that PLY files that are not captures are left to other readers.
+   */
+  static int CanReadFile(const char* fileName);
+
+  /**
    * The degree (0 to 3) of the spherical harmonics in the last output; 0 without
    * "SphericalHarmonics", -1 before the first successful read.
    */

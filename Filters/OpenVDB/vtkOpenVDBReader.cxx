@@ -5,9 +5,11 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkStringArray.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <openvdb/io/File.h>
@@ -55,6 +57,7 @@ struct vtkOpenVDBReader::Internals
 {
   std::vector<GridInfo> Grids;
   std::string DefaultGrid; // the first supported grid
+  vtkNew<vtkStringArray> SupportedGridNames;
 };
 
 //------------------------------------------------------------------------------
@@ -93,6 +96,7 @@ int vtkOpenVDBReader::RequestInformation(
   Internals& internal = *this->Internal;
   internal.Grids.clear();
   internal.DefaultGrid.clear();
+  internal.SupportedGridNames->Initialize();
   // A failed update must not leave the previous grid's outputs behind.
   vtkPolyData::GetData(outputVector, 0)->Initialize();
   vtkImageData::GetData(outputVector, 1)->Initialize();
@@ -143,6 +147,10 @@ int vtkOpenVDBReader::RequestInformation(
           openvdb::CoordBBox(openvdb::Coord(low->value()), openvdb::Coord(high->value()));
       }
       info.Supported = IsSupported(*grid);
+      if (info.Supported)
+      {
+        internal.SupportedGridNames->InsertNextValue(info.Name);
+      }
       if (info.Supported && internal.DefaultGrid.empty())
       {
         internal.DefaultGrid = info.Name;
@@ -154,6 +162,7 @@ int vtkOpenVDBReader::RequestInformation(
   {
     internal.Grids.clear();
     internal.DefaultGrid.clear();
+    internal.SupportedGridNames->Initialize();
     vtkErrorMacro("Cannot read the grid list of the OpenVDB file '" << this->FileName
                                                                      << "': " << e.what());
     return 0;
@@ -337,6 +346,11 @@ vtkIdType vtkOpenVDBReader::GetGridActiveVoxelCount(int index)
 {
   const GridInfo* info = Info(this->Internal->Grids, index);
   return info ? info->ActiveVoxels : -1;
+}
+
+vtkStringArray* vtkOpenVDBReader::GetSupportedGridNames()
+{
+  return this->Internal->SupportedGridNames;
 }
 
 bool vtkOpenVDBReader::GetGridIndexToWorld(int index, double matrix[16])

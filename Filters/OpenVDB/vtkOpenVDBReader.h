@@ -60,6 +60,7 @@
 #include <memory> // For std::unique_ptr
 
 class vtkImageData;
+class vtkStringArray;
 
 class SPLATOPENVDB_EXPORT vtkOpenVDBReader : public vtkPolyDataAlgorithm
 {
@@ -150,6 +151,13 @@ public:
   vtkIdType GetGridActiveVoxelCount(int index);
   bool GetGridIndexToWorld(int index, double matrix[16]);
   ///@}
+
+  /**
+   * The names of the grids of a supported type, in the order of GetGridName (valid after
+   * UpdateInformation): the values GridName can take, the first being the default. ParaView's
+   * grid drop-down lists them.
+   */
+  vtkStringArray* GetSupportedGridNames();
 
   ///@{
   /**
