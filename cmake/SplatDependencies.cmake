@@ -30,12 +30,11 @@ endif ()
 # GLM: the VTK-free math shared by the CPU rasterizer, the filters and the tests (header only).
 find_package(glm REQUIRED)
 
-# OpenVDB (Debian's libopenvdb 10, its FindOpenVDB.cmake): the .vdb reader module, system-VTK
-# build only. It must come after VTK (see above).
-if (NOT SPLAT_BUILD_PARAVIEW_PLUGIN)
-  list(APPEND CMAKE_MODULE_PATH "/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB")
-  find_package(OpenVDB REQUIRED)
-endif ()
+# OpenVDB (Debian's libopenvdb 10, its FindOpenVDB.cmake): the .vdb reader module, in both builds
+# (ParaView 5.11's VTK links none of OpenVDB's TBB, Boost or Imath). It must come after VTK (see
+# above).
+list(APPEND CMAKE_MODULE_PATH "/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB")
+find_package(OpenVDB REQUIRED)
 
 if (BUILD_TESTING)
   find_package(GTest REQUIRED)
