@@ -7,6 +7,8 @@
 //   CheckXMLFile checks them, with VTK's own XML parser, against what the file holds.
 // - MetaIO (vtkMetaImageReader) loops without end on a negative NDims; CheckMetaImageHeader
 //   checks the header lines it sizes its reads with.
+// - vtkNIFTIImageReader crashes in RequestInformation on an unknown datatype;
+//   CheckNIFTIDataType checks it.
 // Each throws std::runtime_error naming the file.
 #ifndef SplatFileChecks_h
 #define SplatFileChecks_h
@@ -15,6 +17,7 @@
 #include "vtkNew.h"
 #include "vtkXMLDataElement.h"
 #include "vtkXMLDataParser.h"
+#include "vtk_zlib.h"
 
 #include <vtksys/SystemTools.hxx>
 
@@ -119,6 +122,15 @@ public:
   }
 
 private:
+  // What CheckArray learned of an array: its value size, its byte count, and where its values
+  // start in the file when they are stored raw and uncompressed (-1 otherwise).
+  struct ArrayData
+  {
+    int ValueSize;
+    double Total;
+    double RawValues = -1;
+  };
+
   static std::string Attribute(vtkXMLDataElement* e, const char* name, const char* fallback)
   {
     const char* value = e->GetAttribute(name);
@@ -191,23 +203,55 @@ private:
       const long long tuples = name == "PointData" || name == "Points" ? points
         : name == "CellData"                                           ? cells
                                                                        : -1;
+      std::map<std::string, ArrayData> cellArrays;
       for (int a = 0; a < group->GetNumberOfNestedElements(); ++a)
       {
         // A cell group's offsets hold one value per cell; its connectivity any number.
         vtkXMLDataElement* array = group->GetNestedElement(a);
-        const bool offsets = cellCounts.count(name) && Attribute(array, "Name", "") == "offsets";
+        const std::string arrayName = Attribute(array, "Name", "");
+        const bool offsets = cellCounts.count(name) && arrayName == "offsets";
         if (std::strcmp(array->GetName(), "DataArray") == 0)
         {
-          this->CheckArray(array, offsets ? cellCounts[name] : tuples,
-            cellCounts.count(name) && cellCounts[name] > 0);
+          cellArrays.emplace(arrayName,
+            this->CheckArray(array, offsets ? cellCounts[name] : tuples,
+              cellCounts.count(name) && cellCounts[name] > 0));
         }
       }
+      if (cellCounts.count(name) && cellCounts[name] > 0)
+      {
+        this->CheckLastOffset(cellArrays, name);
+      }
+    }
+  }
+
+  // vtkXMLPolyDataReader sizes a cell group's connectivity by its last offset: where that value
+  // can be read without decoding the array (raw, uncompressed), it must be the connectivity's
+  // length.
+  void CheckLastOffset(const std::map<std::string, ArrayData>& arrays, const std::string& group)
+  {
+    const auto offsets = arrays.find("offsets"), connectivity = arrays.find("connectivity");
+    if (offsets == arrays.end() || connectivity == arrays.end() ||
+      offsets->second.RawValues < 0 || offsets->second.ValueSize > 8)
+    {
+      return;
+    }
+    const ArrayData& o = offsets->second;
+    const std::string bytes = this->ReadAt(o.RawValues + o.Total - o.ValueSize, o.ValueSize);
+    std::uint64_t last = 0;
+    for (int b = 0; b < o.ValueSize && bytes.size() == std::size_t(o.ValueSize); ++b)
+    {
+      last = (last << 8) |
+        static_cast<unsigned char>(bytes[this->BigEndian ? b : o.ValueSize - 1 - b]);
+    }
+    if (double(last) * connectivity->second.ValueSize != connectivity->second.Total)
+    {
+      this->Fail("has " + group + " whose last offset is not the length of their connectivity");
     }
   }
 
   // One DataArray holding `tuples` tuples (-1: a cell array whose length the data gives; not
   // empty for a group with cells).
-  void CheckArray(vtkXMLDataElement* array, long long tuples, bool nonEmpty)
+  ArrayData CheckArray(vtkXMLDataElement* array, long long tuples, bool nonEmpty)
   {
     const std::string name = Attribute(array, "Name", "");
     const int size = XMLTypeSize(Attribute(array, "type", ""));
@@ -220,19 +264,25 @@ private:
     }
     const double bytes = tuples < 0 ? -1 : double(tuples) * components * size;
     const std::string format = Attribute(array, "format", "");
-    // Inline data: an ascii value takes at least a digit and a separator, base64 4 characters
-    // per 3 bytes (which may be compressed).
-    if (format == "ascii" || format == "binary")
+    ArrayData data{ size, bytes };
+    if (format == "ascii")
     {
-      if (bytes > (format == "ascii" ? 4 : 0.75 * MaxExpansion(this->Compressor)) * this->FileSize)
+      // An ascii value takes at least a digit and a separator.
+      if (bytes > 4 * this->FileSize)
       {
         this->Fail("has fewer values in array '" + name + "' than its size says");
       }
-      return;
+      return data;
     }
-    std::string encoded;
-    double available; // the bytes the file holds from the array's start on
-    if (format == "appended")
+    double start; // where the array's (encoded) block starts in the file
+    bool raw = false;
+    if (format == "binary")
+    {
+      // Inline base64 text follows the end of the DataArray's start tag.
+      start = static_cast<double>(this->Find('>', static_cast<double>(array->GetXMLByteIndex())));
+      start = static_cast<double>(this->SkipSpace(start + 1));
+    }
+    else if (format == "appended")
     {
       long long offset;
       if (!ParseInteger(array->GetAttribute("offset"), 0, 1LL << 62, offset))
@@ -240,32 +290,65 @@ private:
         this->Fail("has an invalid offset for array '" + name + "'");
       }
       // The parser stops at the appended section's marker: its position starts the data.
-      const double start = this->Parser->GetAppendedDataPosition() + double(offset);
-      std::ifstream in(this->Path, std::ios::binary);
-      in.seekg(static_cast<std::streamoff>(std::min(start, this->FileSize)));
-      encoded.resize(static_cast<std::size_t>(std::clamp(this->FileSize - start, 0.0, 4096.0)));
-      in.read(&encoded[0], static_cast<std::streamsize>(encoded.size()));
-      encoded.resize(static_cast<std::size_t>(in.gcount()));
-      available = this->FileSize - start;
+      start = this->Parser->GetAppendedDataPosition() + double(offset);
       const vtkXMLDataElement* appended = this->Parser->GetRootElement()
                                             ->FindNestedElementWithName("AppendedData");
-      this->Raw = !appended || Attribute(const_cast<vtkXMLDataElement*>(appended), "encoding",
-                                 "base64") == "raw";
-      if (!this->Raw)
-      {
-        available *= 0.75;
-      }
+      raw = !appended || Attribute(const_cast<vtkXMLDataElement*>(appended), "encoding",
+                           "base64") == "raw";
     }
     else
     {
       this->Fail("has array '" + name + "' in an unknown format '" + format + "'");
     }
-    this->CheckBlocks(format == "appended" && this->Raw, encoded, available, bytes, nonEmpty, name);
+    const std::string encoded = this->ReadAt(start, 4096);
+    const double available = (this->FileSize - start) * (raw ? 1 : 0.75);
+    data.Total = this->CheckBlocks(raw, encoded, available, bytes, nonEmpty, name);
+    if (raw && this->Compressor.empty())
+    {
+      data.RawValues = start + double(this->HeaderWidth);
+    }
+    return data;
+  }
+
+  // Up to `count` bytes of the file from `start` on.
+  std::string ReadAt(double start, std::size_t count) const
+  {
+    std::ifstream in(this->Path, std::ios::binary);
+    in.seekg(static_cast<std::streamoff>(std::clamp(start, 0.0, this->FileSize)));
+    std::string bytes(static_cast<std::size_t>(std::clamp(this->FileSize - start, 0.0,
+                        static_cast<double>(count))),
+      '\0');
+    in.read(&bytes[0], static_cast<std::streamsize>(bytes.size()));
+    bytes.resize(static_cast<std::size_t>(in.gcount()));
+    return bytes;
+  }
+
+  // The position of the first `c` at or after `from` (the file's size when there is none).
+  double Find(char c, double from) const
+  {
+    for (double at = from; at < this->FileSize; at += 4096)
+    {
+      const std::string chunk = this->ReadAt(at, 4096);
+      const std::size_t found = chunk.find(c);
+      if (found != std::string::npos)
+      {
+        return at + double(found);
+      }
+    }
+    return this->FileSize;
+  }
+
+  double SkipSpace(double from) const
+  {
+    const std::string chunk = this->ReadAt(from, 4096);
+    const std::size_t found = chunk.find_first_not_of(" \t\r\n");
+    return found == std::string::npos ? from + double(chunk.size()) : from + double(found);
   }
 
   // The binary header: the byte count, or (compressed) the block count, block size, last block
   // size and the compressed block sizes; they must fit the file and give `bytes` (if >= 0).
-  void CheckBlocks(bool raw, const std::string& encoded, double available, double bytes,
+  // Returns the array's byte count.
+  double CheckBlocks(bool raw, const std::string& encoded, double available, double bytes,
     bool nonEmpty, const std::string& name)
   {
     const bool compressed = !this->Compressor.empty();
@@ -300,6 +383,7 @@ private:
     {
       this->Fail("has array '" + name + "' whose data is missing or not of its declared size");
     }
+    return total;
   }
 
   // The first `count` header words, decoded from raw bytes or base64 text.
@@ -335,7 +419,6 @@ private:
   std::vector<long long> WholeExtent = { -(1LL << 30), 1LL << 30, -(1LL << 30), 1LL << 30,
     -(1LL << 30), 1LL << 30 };
   bool BigEndian = false;
-  bool Raw = true;
   std::size_t HeaderWidth = 4;
   vtkNew<vtkXMLDataParser> Parser;
 };
@@ -437,6 +520,45 @@ inline void CheckMetaImageHeader(const std::string& path)
   {
     throw fail("declares more data than '" + data + "' holds");
   }
+}
+
+/// Checks the datatype of a NIFTI-1 or NIFTI-2 header (gzipped or not) against the types
+/// vtkNIFTIImageReader reads.
+inline void CheckNIFTIDataType(const std::string& path)
+{
+  unsigned char header[16] = {};
+  gzFile in = gzopen(path.c_str(), "rb");
+  const int read = in ? gzread(in, header, sizeof(header)) : 0;
+  if (in)
+  {
+    gzclose(in);
+  }
+  // sizeof_hdr is 348 (NIFTI-1, datatype at byte 70) or 540 (NIFTI-2, at byte 12), in either
+  // byte order; datatype is 16 bits in the same order.
+  const bool little = header[0] == 0x5c || header[0] == 0x1c;
+  const bool nifti2 = header[0] == 0x1c || header[3] == 0x1c;
+  unsigned char type[2] = { header[12], header[13] };
+  if (!nifti2 && read == sizeof(header))
+  {
+    in = gzopen(path.c_str(), "rb");
+    gzseek(in, 70, SEEK_SET);
+    const int n = gzread(in, type, 2);
+    gzclose(in);
+    if (n != 2)
+    {
+      type[0] = type[1] = 0;
+    }
+  }
+  const int datatype = little ? type[0] | (type[1] << 8) : type[1] | (type[0] << 8);
+  for (int known : { 2, 4, 8, 16, 32, 64, 128, 256, 512, 768, 1024, 1280, 1792, 2304 })
+  {
+    if (read == sizeof(header) && datatype == known)
+    {
+      return;
+    }
+  }
+  throw std::runtime_error(
+    "'" + path + "' has NIFTI datatype " + std::to_string(datatype) + ", which is not read");
 }
 }
 

@@ -153,6 +153,14 @@ inline vtkSmartPointer<vtkPolyData> ReadOFF(const std::string& path)
   {
     throw fail("expected the counts 'vertices faces edges'");
   }
+  // A vertex line takes at least 6 bytes ("x y z\n") and a face line 8: counts the file cannot
+  // hold are an error before anything is allocated for them.
+  const double fileSize = static_cast<double>(vtksys::SystemTools::FileLength(path));
+  if (6.0 * vertexCount + 8.0 * faceCount > fileSize)
+  {
+    throw fail("the counts " + std::to_string(vertexCount) + " vertices and " +
+      std::to_string(faceCount) + " faces do not fit in the file");
+  }
 
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -173,7 +181,8 @@ inline vtkSmartPointer<vtkPolyData> ReadOFF(const std::string& path)
   {
     nextLine();
     long long n;
-    if (!(fields >> n) || n < 3)
+    // Each index takes at least two characters of the line.
+    if (!(fields >> n) || n < 3 || 2 * n > static_cast<long long>(line.size()))
     {
       throw fail("expected a face 'n i_0 ... i_n-1' with n >= 3");
     }
@@ -406,6 +415,7 @@ inline vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path)
     {
       throw std::runtime_error("'" + path + "' is not a NIFTI file");
     }
+    CheckNIFTIDataType(path);
     nifti->SetFileName(path.c_str());
     reader = nifti;
     // The header's size, type and components against what the file (or, gzipped, at most
@@ -416,10 +426,15 @@ inline vtkSmartPointer<vtkImageData> ReadVolume(const std::string& path)
       vtkInformation* scalars = vtkDataObject::GetActiveFieldInformation(
         info, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
       const int* extent = info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
-      double bytes = scalars && scalars->Has(vtkDataObject::FIELD_ARRAY_TYPE())
-        ? vtkAbstractArray::GetDataTypeSize(scalars->Get(vtkDataObject::FIELD_ARRAY_TYPE())) *
+      // An unknown NIFTI datatype leaves the scalar type unset: only numeric types are sized.
+      const int type = scalars && scalars->Has(vtkDataObject::FIELD_ARRAY_TYPE())
+        ? scalars->Get(vtkDataObject::FIELD_ARRAY_TYPE())
+        : VTK_VOID;
+      const bool numeric = (type >= VTK_CHAR && type <= VTK_DOUBLE) ||
+        (type >= VTK_SIGNED_CHAR && type <= VTK_UNSIGNED_LONG_LONG);
+      double bytes = numeric ? vtkAbstractArray::GetDataTypeSize(type) *
           double(scalars->Get(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS()))
-        : 0;
+                             : 0;
       for (int axis = 0; axis < 3 && extent; ++axis)
       {
         bytes *= double(extent[2 * axis + 1]) - extent[2 * axis] + 1;
