@@ -423,8 +423,25 @@ inline Outcome ReadInChild(const Reader& reader, const std::string& path,
 class Tally
 {
 public:
-  /// Writes each variant to `path`, reads it in a child process and counts the outcome;
-  /// Returns the number of failures (outcomes after CleanError).
+  /// The filters from the command line: -only FORMAT_PART, -stride N (default `stride`).
+  Tally(int argc, char* argv[], int stride)
+  {
+    for (int i = 1; i + 1 < argc; ++i)
+    {
+      if (std::strcmp(argv[i], "-only") == 0)
+      {
+        this->Only = argv[i + 1];
+      }
+      else if (std::strcmp(argv[i], "-stride") == 0)
+      {
+        stride = std::atoi(argv[i + 1]);
+      }
+    }
+    this->Stride = std::max(stride, 1);
+  }
+
+  /// Writes each (Stride-th) variant to `path`, reads it in a child process and counts the
+  /// outcome; returns the number of failures (outcomes after CleanError).
   /// `readPath`, when given, is the file read instead (a .mhd whose .raw `path` is).
   int Run(const std::string& format, const Reader& reader, const std::string& path,
     const std::vector<Variant>& variants, vtkDataObject* reference, bool prefixOk = false,
@@ -439,6 +456,10 @@ public:
     counts.resize(NumberOfOutcomes);
     for (const auto& variant : variants)
     {
+      if (this->Seen++ % this->Stride != 0)
+      {
+        continue;
+      }
       WriteFile(path, variant.bytes);
       std::string detail;
       const Outcome outcome =
@@ -475,6 +496,10 @@ public:
 
   void Print(std::ostream& os) const
   {
+    if (this->Stride > 1)
+    {
+      os << "every " << this->Stride << "th variant read (-stride 1 reads all of them)\n";
+    }
     os << "format                     variants   errors    reads  failures\n";
     for (const auto& [format, counts] : this->Counts)
     {
@@ -491,10 +516,13 @@ public:
     }
   }
 
-  /// Runs only the formats whose name contains `only` (a command-line filter for debugging).
-  std::string Only;
-
 private:
+  // Only the formats whose name contains `Only` run (a filter for debugging); every
+  // `Stride`th variant is read, counted across formats so that each format's list starts at
+  // a different phase.
+  std::string Only;
+  int Stride = 1;
+  long long Seen = 0;
   std::map<std::string, std::vector<int>> Counts;
 };
 }

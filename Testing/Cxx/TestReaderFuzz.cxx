@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Every file format splat_render reads, fuzzed through the entry points it uses
+// The volume and XML formats splat_render reads, fuzzed through the entry points it uses
 // (splatexample::ReadPolyData and ReadVolume): small files with every feature each reader
 // parses are generated here (and the real bunny.ply and ch2.nii.gz are used when present),
 // truncated at every byte of their header and at a spread of offsets through the body, and
@@ -402,8 +402,7 @@ int main(int argc, char* argv[])
   }
   const std::string dir = splattest::Argument(argc, argv, "-T") + "/TestReaderFuzz";
   vtksys::SystemTools::MakeDirectory(dir);
-  splatfuzz::Tally tally;
-  tally.Only = splattest::Argument(argc, argv, "-only");
+  splatfuzz::Tally tally(argc, argv, DEFAULT_STRIDE);
   int failures = 0;
   failures += FuzzXML(tally, dir);
   failures += FuzzMetaImage(tally, dir);

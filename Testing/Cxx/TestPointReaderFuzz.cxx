@@ -1,0 +1,308 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The point and kernel formats splat_render reads, fuzzed like TestReaderFuzz.cxx does the
+// volume and XML ones: PLY meshes in the three encodings (vtkSplatPLYReader), 3D Gaussian
+// Splatting captures as .ply and .splat (vtkGaussianSplatReader), .xyz and .off text files, and
+// OpenVDB fog and level sets (vtkOpenVDBReader), each written here, truncated and with mutated
+// header fields and counts, and read in a child process through the entry points splat_render
+// uses: an error naming the file or a consistent dataset (for a truncation, the whole original
+// data; for .xyz and .splat, which have no counts, cut at a record's end, its first points),
+// never a crash, hang or absurd allocation.
+#include "SplatFileReaders.h"
+#include "SplatFuzzTestUtilities.h"
+#include "SplatPLYTestUtilities.h"
+#include "SplatTestUtilities.h"
+
+#include "vtkOpenVDBReader.h"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/LevelSetSphere.h>
+
+#include <iostream>
+
+using splatfuzz::Bytes;
+using splatfuzz::Variant;
+
+namespace
+{
+void Append(std::vector<Variant>& to, std::vector<Variant> from)
+{
+  to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
+}
+
+vtkSmartPointer<vtkDataObject> ReadSurface(const std::string& path)
+{
+  return splatexample::ReadPolyData(path);
+}
+
+vtkSmartPointer<vtkDataObject> ReadCapture(const std::string& path)
+{
+  return splatexample::ReadGaussianSplats(path).Kernels;
+}
+
+// The grid `name` of an OpenVDB file, as splat_render reads it.
+splatfuzz::Reader VdbGrid(const std::string& name)
+{
+  return [name](const std::string& path) -> vtkSmartPointer<vtkDataObject>
+  {
+    splatexample::RequireFile(path);
+    vtkNew<vtkOpenVDBReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->SetGridName(name.c_str());
+    splatexample::UpdateReader(reader, path);
+    return reader->GetOutput();
+  };
+}
+
+// Reads `path` as it is: the reference its variants are held to.
+vtkSmartPointer<vtkDataObject> Reference(
+  const splatfuzz::Reader& reader, const std::string& path, vtkIdType points)
+{
+  vtkSmartPointer<vtkDataObject> data = reader(path);
+  if (vtkDataSet::SafeDownCast(data)->GetNumberOfPoints() != points)
+  {
+    throw std::runtime_error("'" + path + "' read as " +
+      std::to_string(vtkDataSet::SafeDownCast(data)->GetNumberOfPoints()) + " points, not " +
+      std::to_string(points));
+  }
+  return data;
+}
+
+// Truncations of a text or binary file with a text header ending at `headerEnd`, and its
+// header's tokens replaced by `words` or mutated numbers.
+std::vector<Variant> HeaderVariants(
+  const Bytes& file, std::size_t headerEnd, const std::vector<std::string>& words)
+{
+  std::vector<Variant> variants = splatfuzz::Truncations(file, headerEnd, 256, 32);
+  Append(variants, splatfuzz::TokenMutations(file, 0, headerEnd, words));
+  return variants;
+}
+
+const std::vector<std::string> PLYWords = { "ply", "ascii", "binary_little_endian",
+  "binary_big_endian", "element", "property", "list", "vertex", "face", "char", "uchar", "int",
+  "uint", "float", "double", "int64", "x", "f_dc_0", "f_rest_0", "opacity", "end_header" };
+
+// A 24-vertex mesh with normals, colors and 7 faces (one a quad) in `format`.
+Bytes MeshPLY(const std::string& format)
+{
+  splattest::PLYElement vertex{ "vertex", {}, {} };
+  for (const char* name : { "x", "y", "z", "nx", "ny", "nz" })
+  {
+    vertex.Properties.push_back({ name, "float", "" });
+  }
+  for (const char* name : { "red", "green", "blue" })
+  {
+    vertex.Properties.push_back({ name, "uchar", "" });
+  }
+  for (int i = 0; i < 24; ++i)
+  {
+    vertex.Records.push_back({ { 0.25 * (i % 4) }, { 0.5 * (i / 4) }, { 0.125 * (i % 3) - 1 },
+      { 0 }, { (i % 2) ? 0.6 : 0.8 }, { (i % 2) ? 0.8 : 0.6 }, { 10.0 * i },
+      { 255.0 - 10 * i }, { 128 } });
+  }
+  splattest::PLYElement face{ "face", { { "vertex_indices", "int", "uchar" } }, {} };
+  for (int t = 0; t < 6; ++t)
+  {
+    face.Records.push_back({ { double(t), t + 1.0, t + 4.0 } });
+  }
+  face.Records.push_back({ { 16, 17, 21, 20 } });
+  return splattest::PLYFile({ vertex, face }, format);
+}
+
+// A 3DGS capture in the INRIA layout with degree-1 harmonics: 16 Gaussians.
+Bytes CapturePLY()
+{
+  splattest::PLYElement vertex{ "vertex", {}, {} };
+  std::vector<std::string> names = { "x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1",
+    "f_dc_2" };
+  for (int j = 0; j < 9; ++j)
+  {
+    names.push_back("f_rest_" + std::to_string(j));
+  }
+  for (const char* name :
+    { "opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3" })
+  {
+    names.push_back(name);
+  }
+  for (const std::string& name : names)
+  {
+    vertex.Properties.push_back({ name, "float", "" });
+  }
+  for (int i = 0; i < 16; ++i)
+  {
+    std::vector<std::vector<double>> record;
+    for (std::size_t p = 0; p < names.size(); ++p)
+    {
+      record.push_back({ 0.125 * ((i * 7 + int(p) * 3) % 17) - 1 });
+    }
+    vertex.Records.push_back(record);
+  }
+  return splattest::PLYFile({ vertex }, "binary_little_endian");
+}
+
+std::size_t HeaderEnd(const Bytes& ply)
+{
+  return ply.find("end_header\n") + 11;
+}
+
+int FuzzPLY(splatfuzz::Tally& tally, const std::string& dir)
+{
+  int failures = 0;
+  const std::string path = dir + "/fuzz.ply";
+  for (const std::string format : { "ascii", "binary_little_endian", "binary_big_endian" })
+  {
+    const Bytes file = MeshPLY(format);
+    splatfuzz::WriteFile(path, file);
+    const auto reference = Reference(&ReadSurface, path, 24);
+    std::vector<Variant> variants = HeaderVariants(file, HeaderEnd(file), PLYWords);
+    if (format != "ascii")
+    {
+      // The first and the last face's vertex count.
+      const std::size_t faces = HeaderEnd(file) + 24 * (6 * 4 + 3);
+      for (std::size_t at : { faces, file.size() - 17 })
+      {
+        Append(variants, splatfuzz::FieldMutations(file, "face count at " + std::to_string(at),
+                           at, 1, { 0, 1, 2, 5, 255 }));
+      }
+    }
+    failures += tally.Run("ply mesh " + format, &ReadSurface, path, variants, reference);
+  }
+
+  // Captures: the .ply, and a .splat (32 bytes per Gaussian, no header).
+  Bytes file = CapturePLY();
+  splatfuzz::WriteFile(path, file);
+  auto reference = Reference(&ReadCapture, path, 16);
+  failures += tally.Run("ply 3dgs", &ReadCapture, path,
+    HeaderVariants(file, HeaderEnd(file), PLYWords), reference);
+  file.clear();
+  for (int i = 0; i < 16 * 32; ++i)
+  {
+    file += static_cast<char>(i % 32 < 24 ? (i % 4 == 3 ? 0x3e : i * 37 % 256) : i * 11 % 256);
+  }
+  const std::string splat = dir + "/fuzz.splat";
+  splatfuzz::WriteFile(splat, file);
+  reference = Reference(&ReadCapture, splat, 16);
+  // A .splat has no count: cut at a record's end it is a valid shorter capture.
+  failures += tally.Run(
+    "splat", &ReadCapture, splat, splatfuzz::Truncations(file, 0, 0, 64), reference, true);
+  return failures;
+}
+
+// .xyz (no counts: a cut at a line end is a valid shorter file) and .off.
+int FuzzText(splatfuzz::Tally& tally, const std::string& dir)
+{
+  int failures = 0;
+  Bytes xyz = "# x y z nx ny nz\n", off = "OFF\n# a comment\n24 7 0\n";
+  for (int i = 0; i < 24; ++i)
+  {
+    const std::string point = std::to_string(0.25 * (i % 4)) + " " + std::to_string(0.5 * (i / 4)) +
+      " " + std::to_string(0.125 * (i % 3) - 1);
+    xyz += point + " 0 0.6 0.8\n";
+    off += point + "\n";
+  }
+  for (int t = 0; t < 6; ++t)
+  {
+    off += "3 " + std::to_string(t) + " " + std::to_string(t + 1) + " " + std::to_string(t + 4) +
+      "\n";
+  }
+  off += "4 16 17 21 20 255 0 0\n";
+  const std::vector<std::string> words = { "OFF", "COFF", "#", "nan", "inf", "1e999" };
+
+  const std::string xyzPath = dir + "/fuzz.xyz";
+  splatfuzz::WriteFile(xyzPath, xyz);
+  auto reference = Reference(&ReadSurface, xyzPath, 24);
+  std::vector<Variant> variants;
+  for (std::size_t end = xyz.find('\n'); end != Bytes::npos; end = xyz.find('\n', end + 1))
+  {
+    variants.push_back({ "cut after the line ending at " + std::to_string(end),
+      xyz.substr(0, end + 1), true });
+  }
+  Append(variants, splatfuzz::TokenMutations(xyz, 0, xyz.size(), words));
+  failures += tally.Run("xyz", &ReadSurface, xyzPath, variants, reference, true);
+
+  const std::string offPath = dir + "/fuzz.off";
+  splatfuzz::WriteFile(offPath, off);
+  reference = Reference(&ReadSurface, offPath, 24);
+  variants = splatfuzz::Truncations(off, off.size(), 1024);
+  Append(variants, splatfuzz::TokenMutations(off, 0, off.size(), words));
+  failures += tally.Run("off", &ReadSurface, offPath, variants, reference);
+  return failures;
+}
+
+// A fog volume (voxels and an active tile) and a level set sphere in one file, each grid read
+// by name: truncations, and every 32-bit word of the file's first 256 bytes (magic, version,
+// UUID, metadata and grid descriptors) set to 0, -1, one more and huge values.
+int FuzzVdb(splatfuzz::Tally& tally, const std::string& dir)
+{
+  openvdb::initialize();
+  auto fog = openvdb::FloatGrid::create(0.0f);
+  fog->setName("density");
+  fog->setGridClass(openvdb::GRID_FOG_VOLUME);
+  fog->setTransform(openvdb::math::Transform::createLinearTransform(0.5));
+  for (int i = 0; i < 40; ++i)
+  {
+    fog->tree().setValue(openvdb::Coord(i % 5, i / 5 % 4, i / 20), 0.05f * i);
+  }
+  fog->tree().addTile(1, openvdb::Coord(32, 0, 0), 0.5f, true);
+  auto surface = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(3.0f, {}, 0.5f, 2.0f);
+  surface->setName("surface");
+  const std::string path = dir + "/fuzz.vdb";
+  openvdb::io::File(path).write({ fog, surface });
+  const Bytes file = splatfuzz::ReadFile(path);
+
+  int failures = 0;
+  for (const std::string grid : { "density", "surface" })
+  {
+    const splatfuzz::Reader reader = VdbGrid(grid);
+    splatfuzz::WriteFile(path, file);
+    vtkSmartPointer<vtkDataObject> reference = reader(path);
+    if (vtkDataSet::SafeDownCast(reference)->GetNumberOfPoints() == 0)
+    {
+      throw std::runtime_error("'" + path + "' grid " + grid + " read as no points");
+    }
+    std::vector<Variant> variants = splatfuzz::Truncations(file, 256, 256, 64);
+    for (std::size_t at = 0; at + 4 <= std::min<std::size_t>(256, file.size()); at += 4)
+    {
+      std::int32_t value;
+      std::memcpy(&value, file.data() + at, 4);
+      Append(variants, splatfuzz::FieldMutations(file, "word at " + std::to_string(at), at, 4,
+                         { 0, -1, value + 1LL, 0x7fffffff }));
+    }
+    failures += tally.Run("vdb " + grid, reader, path, variants, reference);
+  }
+  return failures;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  // "-read FILE" reads one file in this process, for a debugger or a sanitizer.
+  const std::string one = splattest::Argument(argc, argv, "-read");
+  if (!one.empty())
+  {
+    try
+    {
+      const std::string grid = splattest::Argument(argc, argv, "-grid");
+      auto data = splatexample::HasExtension(one, ".vdb") ? VdbGrid(grid)(one)
+        : splatexample::IsGaussianSplatFile(one)          ? ReadCapture(one)
+                                                          : ReadSurface(one);
+      std::cout << one << ": " << vtkDataSet::SafeDownCast(data)->GetNumberOfPoints()
+                << " points\n";
+      return EXIT_SUCCESS;
+    }
+    catch (const std::exception& e)
+    {
+      std::cout << e.what() << "\n";
+      return EXIT_FAILURE;
+    }
+  }
+  const std::string dir = splattest::Argument(argc, argv, "-T") + "/TestPointReaderFuzz";
+  vtksys::SystemTools::MakeDirectory(dir);
+  splatfuzz::Tally tally(argc, argv, DEFAULT_STRIDE);
+  int failures = 0;
+  failures += FuzzPLY(tally, dir);
+  failures += FuzzText(tally, dir);
+  failures += FuzzVdb(tally, dir);
+  tally.Print(std::cout);
+  std::cout << failures << " failures\n";
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
