@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkOpenVDBReader.h"
+#include "vtkOpenVDBArchiveCheck.h"
 #include "vtkOpenVDBReaderBuilder.h"
 
 #include "vtkImageData.h"
@@ -108,6 +109,7 @@ int vtkOpenVDBReader::RequestInformation(
   }
   try
   {
+    splatvdb::ArchiveCheck{ this->FileName };
     openvdb::io::File file(this->FileName);
     file.open(false);
     openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
@@ -230,6 +232,7 @@ int vtkOpenVDBReader::RequestData(
   try
   {
     // The stream reader reads every grid; with stream exceptions a short read stops it.
+    splatvdb::ArchiveCheck{ fileName };
     std::ifstream stream(fileName, std::ios::in | std::ios::binary);
     stream.exceptions(std::ios::failbit | std::ios::badbit);
     openvdb::io::Stream vdb(stream, false);
