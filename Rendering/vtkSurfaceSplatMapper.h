@@ -229,6 +229,13 @@ public:
    */
   bool GetSupportsSelection() override { return true; }
 
+  /**
+   * Each splat takes its point's mapped color: never a color texture, whatever
+   * InterpolateScalarsBeforeMapping says (ParaView turns it on), since a texture leaves
+   * MapScalars without colors.
+   */
+  int CanUseTextureMapForColoring(vtkDataObject*) override { return 0; }
+
 protected:
   vtkSurfaceSplatMapper();
   ~vtkSurfaceSplatMapper() override;
