@@ -260,6 +260,8 @@ void CheckFile(const std::string& path, vtkPolyData* expected, int expectedDegre
   Check(degree == expectedDegree, std::string(what) + ": spherical harmonics degree");
   Check(vtkGaussianSplatReader::IsGaussianSplatFile(path.c_str()),
     std::string(what) + ": IsGaussianSplatFile");
+  Check(vtkGaussianSplatReader::CanReadFile(path.c_str()) == 1,
+    std::string(what) + ": CanReadFile");
   if (data->GetNumberOfPoints() != Count)
   {
     return;
@@ -321,6 +323,7 @@ int main(int argc, char* argv[])
   const std::string meshPath = folder + "/TestGaussianSplatReader_mesh.ply";
   splattest::WriteBytes(meshPath, splattest::PLYFile({ mesh }, "ascii"));
   Check(!vtkGaussianSplatReader::IsGaussianSplatFile(meshPath.c_str()), "a mesh is no capture");
+  Check(vtkGaussianSplatReader::CanReadFile(meshPath.c_str()) == 0, "CanReadFile declines a mesh");
   const std::string bad = folder + "/TestGaussianSplatReader_bad.ply";
   splattest::WriteBytes(bad, PLY(gaussians, 5));
   const std::string shortSplat = folder + "/TestGaussianSplatReader_short.splat";

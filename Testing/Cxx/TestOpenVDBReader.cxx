@@ -10,6 +10,7 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
@@ -158,6 +159,11 @@ TEST(OpenVDBReader, ListsGridsFromMetadata)
   EXPECT_EQ(reader->GetGridActiveVoxelCount(0), static_cast<vtkIdType>(fog->activeVoxelCount()));
   EXPECT_EQ(reader->GetGridActiveVoxelCount(2), 1);
   EXPECT_EQ(reader->GetGridName(3), nullptr);
+  // The values GridName can take (ParaView's grid drop-down): the bool grid is left out.
+  vtkStringArray* supported = reader->GetSupportedGridNames();
+  ASSERT_EQ(supported->GetNumberOfValues(), 2);
+  EXPECT_EQ(supported->GetValue(0), "density");
+  EXPECT_EQ(supported->GetValue(1), "velocity");
   double m[16];
   ASSERT_TRUE(reader->GetGridIndexToWorld(0, m));
   const openvdb::Vec3d ijk(3, -4, 7);

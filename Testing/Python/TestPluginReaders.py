@@ -1,7 +1,8 @@
 """Plugin test, run by pvpython: the Splat readers through ParaView's reader factory (File > Open,
 OpenDataFile) and their proxies, and the Splat filters and sources in their menus.
 
-    pvpython TestPluginReaders.py --plugin PATH/SplatPlugin.so --vdb-writer PATH/splat_write_test_vdb
+    pvpython TestPluginReaders.py --plugin PATH/SplatPlugin.so \
+        --vdb-writer PATH/splat_write_test_vdb
 
 Every file is written by the test in a temporary directory: the .vdb by splat_write_test_vdb
 (SplatWriteTestVdb.cxx: Debian has no OpenVDB Python module), the PLY and .splat files here.
