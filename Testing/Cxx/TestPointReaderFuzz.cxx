@@ -2,7 +2,8 @@
 // The point and kernel formats splat_render reads, fuzzed like TestReaderFuzz.cxx does the
 // volume and XML ones: PLY meshes in the three encodings (vtkSplatPLYReader), 3D Gaussian
 // Splatting captures as .ply and .splat (vtkGaussianSplatReader), .xyz and .off text files, and
-// OpenVDB fog and level sets (vtkOpenVDBReader), each written here, truncated and with mutated
+// OpenVDB fog and level sets (vtkOpenVDBReader), each written here (and the real bunny.ply and
+// sphere.vdb of ../shared/data when present), truncated and with mutated
 // header fields and counts, and read in a child process through the entry points splat_render
 // uses: an error naming the file or a consistent dataset (for a truncation, the whole original
 // data; for .xyz and .splat, which have no counts, cut at a record's end, its first points),
@@ -228,9 +229,23 @@ int FuzzText(splatfuzz::Tally& tally, const std::string& dir)
   return failures;
 }
 
+// Truncations, and every 32-bit word of the file's first 256 bytes (magic, version, UUID,
+// metadata and grid descriptors) set to 0, -1, one more and a huge value.
+std::vector<Variant> VdbVariants(const Bytes& file)
+{
+  std::vector<Variant> variants = splatfuzz::Truncations(file, 256, 256, 64);
+  for (std::size_t at = 0; at + 4 <= std::min<std::size_t>(256, file.size()); at += 4)
+  {
+    std::int32_t value;
+    std::memcpy(&value, file.data() + at, 4);
+    Append(variants, splatfuzz::FieldMutations(file, "word at " + std::to_string(at), at, 4,
+                       { 0, -1, value + 1LL, 0x7fffffff }));
+  }
+  return variants;
+}
+
 // A fog volume (voxels and an active tile) and a level set sphere in one file, each grid read
-// by name: truncations, and every 32-bit word of the file's first 256 bytes (magic, version,
-// UUID, metadata and grid descriptors) set to 0, -1, one more and huge values.
+// by name.
 int FuzzVdb(splatfuzz::Tally& tally, const std::string& dir)
 {
   openvdb::initialize();
@@ -259,15 +274,33 @@ int FuzzVdb(splatfuzz::Tally& tally, const std::string& dir)
     {
       throw std::runtime_error("'" + path + "' grid " + grid + " read as no points");
     }
-    std::vector<Variant> variants = splatfuzz::Truncations(file, 256, 256, 64);
-    for (std::size_t at = 0; at + 4 <= std::min<std::size_t>(256, file.size()); at += 4)
-    {
-      std::int32_t value;
-      std::memcpy(&value, file.data() + at, 4);
-      Append(variants, splatfuzz::FieldMutations(file, "word at " + std::to_string(at), at, 4,
-                         { 0, -1, value + 1LL, 0x7fffffff }));
-    }
-    failures += tally.Run("vdb " + grid, reader, path, variants, reference);
+    failures += tally.Run("vdb " + grid, reader, path, VdbVariants(file), reference);
+  }
+  return failures;
+}
+
+// The real files of ../shared/data when present: the Stanford bunny (binary PLY) and the
+// level set sphere.vdb, read in place and their variants written to `dir`.
+int FuzzRealFiles(splatfuzz::Tally& tally, const std::string& dir, const std::string& data)
+{
+  int failures = 0;
+  const std::string bunny = data + "/bunny.ply", sphere = data + "/sphere.vdb";
+  if (vtksys::SystemTools::FileExists(bunny, true))
+  {
+    // Each variant is a copy of the 3 MB file: the header cut every 7th byte, 32 body cuts, and
+    // its numbers (the element counts) mutated.
+    const Bytes file = splatfuzz::ReadFile(bunny);
+    std::vector<Variant> variants = splatfuzz::Truncations(file, HeaderEnd(file), 0, 32);
+    Append(variants, splatfuzz::TokenMutations(file, 0, HeaderEnd(file), {},
+                       [](const Bytes& bytes, std::size_t i) { return std::isdigit(bytes[i]); }));
+    failures += tally.Run(
+      "ply bunny (real)", &ReadSurface, dir + "/bunny.ply", variants, ReadSurface(bunny));
+  }
+  if (vtksys::SystemTools::FileExists(sphere, true))
+  {
+    const splatfuzz::Reader reader = VdbGrid("");
+    failures += tally.Run("vdb sphere (real)", reader, dir + "/sphere.vdb",
+      VdbVariants(splatfuzz::ReadFile(sphere)), reader(sphere));
   }
   return failures;
 }
@@ -302,6 +335,7 @@ int main(int argc, char* argv[])
   failures += FuzzPLY(tally, dir);
   failures += FuzzText(tally, dir);
   failures += FuzzVdb(tally, dir);
+  failures += FuzzRealFiles(tally, dir, splattest::Argument(argc, argv, "-D"));
   tally.Print(std::cout);
   std::cout << failures << " failures\n";
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
