@@ -160,7 +160,10 @@ int vtkVolumeSplatRepresentation::ProcessViewRequest(
     vtkPVRenderView::SetPiece(inInfo, this, this->OutlineSource->GetOutputDataObject(0), 0, 1);
     // Kernels blend front to back: the ranks' images must too.
     outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
-    vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds);
+    // ParaView orders the ranks of USE_BOUNDS_FOR_REDISTRIBUTION data by these bounds, which
+    // must tile space: an image piece's owned voxels grown by half a voxel, touching the next.
+    vtkPVRenderView::SetGeometryBounds(
+      inInfo, this, this->IsImage ? this->OwnedBounds : this->DataBounds);
     vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
     if (this->IsImage)
     {
