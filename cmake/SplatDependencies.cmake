@@ -30,6 +30,9 @@ endif ()
 # GLM: the VTK-free math shared by the CPU rasterizer, the filters and the tests (header only).
 find_package(glm REQUIRED)
 
+# Eigen 3: the least-squares fits and small eigenproblems of the filters (header only).
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+
 # OpenVDB (Debian's libopenvdb 10, its FindOpenVDB.cmake): the .vdb reader module, in both builds
 # (ParaView 5.11's VTK links none of OpenVDB's TBB, Boost or Imath). It must come after VTK (see
 # above).
