@@ -58,6 +58,7 @@ struct vtkOpenVDBReader::Internals
 {
   std::vector<GridInfo> Grids;
   std::string DefaultGrid; // the first supported grid
+  bool ListingFailed = false; // RequestInformation reported why; RequestData says no more
   vtkNew<vtkStringArray> SupportedGridNames;
 };
 
@@ -98,6 +99,7 @@ int vtkOpenVDBReader::RequestInformation(
   internal.Grids.clear();
   internal.DefaultGrid.clear();
   internal.SupportedGridNames->Initialize();
+  internal.ListingFailed = true;
   // A failed update must not leave the previous grid's outputs behind.
   vtkPolyData::GetData(outputVector, 0)->Initialize();
   vtkImageData::GetData(outputVector, 1)->Initialize();
@@ -169,6 +171,7 @@ int vtkOpenVDBReader::RequestInformation(
                                                                      << "': " << e.what());
     return 0;
   }
+  internal.ListingFailed = false;
 
   // The dense image's extent and geometry, when the file records them.
   const std::string selected =
@@ -209,6 +212,10 @@ int vtkOpenVDBReader::RequestData(
   const std::string fileName = this->FileName ? this->FileName : "";
   const std::string gridName =
     this->GridName && *this->GridName ? this->GridName : this->Internal->DefaultGrid;
+  if (this->Internal->ListingFailed)
+  {
+    return 0;
+  }
   if (this->Internal->Grids.empty())
   {
     vtkErrorMacro("The OpenVDB file '" << fileName << "' has no grids.");
