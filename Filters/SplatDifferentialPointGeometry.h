@@ -255,6 +255,17 @@ inline bool OverlapTest(const DifferentialPoint& p, const DifferentialPoint& q, 
 
 inline bool Overlaps(const DifferentialPoint& p, const DifferentialPoint& q, double scale)
 {
+  // Each test needs the centers' distance along the plane within the rectangles' circumradii.
+  const double reach = scale *
+    (std::sqrt(p.ExtentU * p.ExtentU + p.ExtentV * p.ExtentV) +
+      std::sqrt(q.ExtentU * q.ExtentU + q.ExtentV * q.ExtentV));
+  const Eigen::Vector3d d = q.Position - p.Position;
+  const double distance2 = d.squaredNorm(), reach2 = reach * reach;
+  if (distance2 - std::pow(d.dot(p.Normal), 2) > reach2 &&
+    distance2 - std::pow(d.dot(q.Normal), 2) > reach2)
+  {
+    return false;
+  }
   return OverlapTest(p, q, scale) || OverlapTest(q, p, scale);
 }
 }

@@ -62,14 +62,30 @@ public:
     std::vector<std::uint32_t> version(n, 0);
     using Entry = std::tuple<double, std::int64_t, std::uint32_t>;
     std::priority_queue<Entry> heap;
+    // Eq. 6 as sums of the symmetric pair terms over N(p), updated as N(p) changes.
+    std::vector<double> sums(n, 0.0);
     for (std::int64_t p = 0; p < n; ++p)
     {
-      heap.emplace(this->Redundancy(p), p, 0);
+      for (std::int64_t q : this->Neighbors[p])
+      {
+        sums[p] += this->Agreement(p, q);
+      }
     }
+    auto redundancy = [&](std::int64_t p)
+    {
+      const std::size_t count = this->Neighbors[p].size();
+      return count > 0 ? sums[p] / count : 0.0;
+    };
+    for (std::int64_t p = 0; p < n; ++p)
+    {
+      heap.emplace(redundancy(p), p, 0);
+    }
+    std::vector<std::uint64_t> mark(n, 0);
+    std::uint64_t stamp = 0;
     std::int64_t decided = 0;
     while (!heap.empty())
     {
-      const auto [redundancy, p, entryVersion] = heap.top();
+      const auto [key, p, entryVersion] = heap.top();
       heap.pop();
       if (state[p] != Live || entryVersion != version[p])
       {
@@ -91,19 +107,28 @@ public:
       {
         auto& list = this->Neighbors[q];
         list.erase(std::remove(list.begin(), list.end(), p), list.end());
+        sums[q] -= this->Agreement(p, q);
       }
-      // Eq. 5: p's neighbors that overlap become each other's neighbors.
+      // Eq. 5: p's neighbors that overlap become each other's neighbors (q1's neighbors
+      // marked with the stamp).
       for (std::size_t i = 0; i < former.size(); ++i)
       {
+        const std::int64_t q1 = former[i];
+        ++stamp;
+        for (std::int64_t q : this->Neighbors[q1])
+        {
+          mark[q] = stamp;
+        }
         for (std::size_t j = i + 1; j < former.size(); ++j)
         {
-          const std::int64_t q1 = former[i], q2 = former[j];
-          auto& list = this->Neighbors[q1];
-          if (std::find(list.begin(), list.end(), q2) == list.end() &&
-            Overlaps(this->Points[q1], this->Points[q2], this->Scale))
+          const std::int64_t q2 = former[j];
+          if (mark[q2] != stamp && Overlaps(this->Points[q1], this->Points[q2], this->Scale))
           {
-            list.push_back(q2);
+            this->Neighbors[q1].push_back(q2);
             this->Neighbors[q2].push_back(q1);
+            const double agreement = this->Agreement(q1, q2);
+            sums[q1] += agreement;
+            sums[q2] += agreement;
           }
         }
       }
@@ -111,7 +136,7 @@ public:
       {
         if (state[q] == Live)
         {
-          heap.emplace(this->Redundancy(q), q, ++version[q]);
+          heap.emplace(redundancy(q), q, ++version[q]);
         }
       }
     }
@@ -124,23 +149,15 @@ public:
   }
 
 private:
-  // Eq. 6: the mean over N(p) of how well p predicts each neighbor's normal and the reverse.
-  double Redundancy(std::int64_t p) const
+  // Eq. 6's term for a pair: how well p predicts q's normal and q predicts p's, the same for
+  // (q, p).
+  double Agreement(std::int64_t p, std::int64_t q) const
   {
     const DifferentialPoint& dp = this->Points[p];
-    const auto& neighbors = this->Neighbors[p];
-    if (neighbors.empty())
-    {
-      return 0.0;
-    }
-    double sum = 0.0;
-    for (std::int64_t q : neighbors)
-    {
-      const DifferentialPoint& dq = this->Points[q];
-      sum += std::abs(dq.Normal.dot(PredictedNormal(dp, dq.Position))) +
-        std::abs(dp.Normal.dot(PredictedNormal(dq, dp.Position)));
-    }
-    return sum / (2.0 * neighbors.size());
+    const DifferentialPoint& dq = this->Points[q];
+    return 0.5 *
+      (std::abs(dq.Normal.dot(PredictedNormal(dp, dq.Position))) +
+        std::abs(dp.Normal.dot(PredictedNormal(dq, dp.Position))));
   }
 
   // Enclosed(p): the segments of p's rectangle (its diagonals, midlines, the diamond through
