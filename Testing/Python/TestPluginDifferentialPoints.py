@@ -1,0 +1,102 @@
+"""Plugin test, run by pvpython: the Differential Point Generator filter (filters/
+DifferentialPointGenerator, vtkDifferentialPointGenerator) through ParaView.
+
+    pvpython TestPluginDifferentialPoints.py --plugin PATH/SplatPlugin.so
+
+Checks that the filter is in paraview.simple and in the Splat category of the Filters menu, that
+its properties have the documented defaults, and that on a sphere of radius 2 it outputs
+polydata with the named arrays, curvatures near -1/2 (the sphere's, outward normals), extents
+of the error bound sqrt(2 eps - eps^2) * 2 (within 3%), one point per vertex with Simplify off and fewer
+with it on. Any failure exits non-zero.
+"""
+
+import argparse
+import math
+import os
+import sys
+import traceback
+
+from splat_checks import check, exit_status
+
+
+def test_differential_points(simple, servermanager):
+    make = globals().get("DifferentialPointGenerator")
+    if not check(make is not None, "DifferentialPointGenerator is a paraview.simple function"):
+        return
+    pxm = servermanager.ProxyManager().SMProxyManager
+    hints = pxm.GetProxyHints("filters", "DifferentialPointGenerator")
+    menu = hints.FindNestedElementByName("ShowInMenu") if hints else None
+    check(menu is not None and menu.GetAttribute("category") == "Splat",
+          "filters/DifferentialPointGenerator is in the Splat category of the Filters menu")
+
+    sphere = simple.Sphere(ThetaResolution=64, PhiResolution=32, Radius=2.0)
+    points = make(Input=sphere)
+    defaults = {"MaximumPrincipalError": 0.01, "MaximumPrincipalWidth": 0.0,
+                "NumberOfNeighbors": 16, "Simplify": 1, "SimplificationMargin": 0.15}
+    for name, value in defaults.items():
+        got = getattr(points, name)
+        check(math.isclose(got, value), "default %s is %g (got %s)" % (name, value, got))
+
+    sphere.UpdatePipeline()
+    vertices = sphere.GetDataInformation().GetNumberOfPoints()
+    points.Simplify = 0
+    points.UpdatePipeline()
+    info = points.GetDataInformation()
+    check(info.GetDataSetTypeAsString() == "vtkPolyData", "output is vtkPolyData")
+    # vtkSphereSource's poles are single vertices: every vertex is a sample.
+    check(info.GetNumberOfPoints() == vertices,
+          "Simplify off: one point per vertex (%d vs %d)" % (info.GetNumberOfPoints(), vertices))
+    arrays = {"Normals": 3, "PrincipalDirectionU": 3, "PrincipalDirectionV": 3,
+              "PrincipalCurvatures": 2, "Extents": 2}
+    for name, components in arrays.items():
+        array = points.PointData[name] if name in points.PointData.keys() else None
+        check(array is not None and array.GetNumberOfComponents() == components,
+              "output has %s with %d components" % (name, components))
+    if "PrincipalCurvatures" in points.PointData.keys():
+        for component in (0, 1):
+            lo, hi = points.PointData["PrincipalCurvatures"].GetRange(component)
+            check(abs(lo + 0.5) < 0.02 and abs(hi + 0.5) < 0.02,
+                  "curvature %d of the sphere is -1/2 (range [%g, %g])" % (component, lo, hi))
+    if "Extents" in points.PointData.keys():
+        # Within the curvatures' 3% (the quadric fit's bias on this coarse sphere is 1.7%).
+        bound = math.sqrt(2 * 0.01 - 0.01 ** 2) * 2.0
+        lo, hi = points.PointData["Extents"].GetRange(0)
+        check(abs(lo - bound) < 0.03 * bound and abs(hi - bound) < 0.03 * bound,
+              "extents are the error bound %g (range [%g, %g])" % (bound, lo, hi))
+
+    points.Simplify = 1
+    points.UpdatePipeline()
+    kept = points.GetDataInformation().GetNumberOfPoints()
+    check(0 < kept < vertices / 2, "Simplify on keeps fewer points (%d of %d)" % (kept, vertices))
+    data = servermanager.Fetch(points)
+    check(data is not None and data.GetPointData().GetNormals() is not None
+          and data.GetPointData().GetNormals().GetName() == "Normals",
+          "fetched output has Normals as its active normals")
+    simple.Delete(points)
+    simple.Delete(sphere)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--plugin", required=True, help="path of SplatPlugin.so")
+    args = parser.parse_args()
+    if not check(os.path.isfile(args.plugin), "plugin file exists: %s" % args.plugin):
+        return 1
+
+    from paraview import simple, servermanager
+
+    try:
+        simple.LoadPlugin(args.plugin, remote=False, ns=globals())
+    except Exception as error:  # a plugin that does not load fails the test
+        check(False, "LoadPlugin: %s" % error)
+        return 1
+    try:
+        test_differential_points(simple, servermanager)
+    except Exception:
+        traceback.print_exc()
+        check(False, "exception (see above)")
+    return exit_status()
+
+
+if __name__ == "__main__":
+    sys.exit(main())
