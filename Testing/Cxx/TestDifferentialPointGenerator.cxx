@@ -2,9 +2,9 @@
 // vtkDifferentialPointGenerator (paper 004, Kalaiah and Varshney): principal curvatures and
 // directions against the exact ones of a sphere, a cylinder and a saddle, each as a triangle
 // mesh and as a point cloud; the extents' error bound and the neighbor enlargement; degenerate
-// inputs (a plane, NaN and infinite points, duplicates, 1 to 3 points, no points, noise); the
-// simplification of a dense sphere and the coverage of the sphere by the kept rectangles.
-// Bounds: see CurvatureBounds below and each test.
+// inputs (a plane, NaN and infinite points, duplicates, 1 to 3 points, no points, noise, a
+// crease); the simplification of a dense sphere and the coverage of the sphere by the kept
+// rectangles. The bounds and the values measured are given with each test.
 #include "vtkDifferentialPointGenerator.h"
 
 #include "vtkCellArray.h"
@@ -573,6 +573,42 @@ TEST(DifferentialPointGenerator, DegenerateClouds)
         EXPECT_LE(extents->GetComponent(i, 0), 3.0);
       }
     }
+  }
+}
+
+// A crease: z = |x| over [-1, 1]^2, a mesh and a cloud. The fits straddling the fold bend
+// sharply, yet every output is finite, the extents stay below delta or the neighbors' reach,
+// and the simplification keeps points on both faces (a face's rectangles cannot cover the
+// other's points: their normals are 90 degrees apart).
+TEST(DifferentialPointGenerator, Crease)
+{
+  Surface crease;
+  crease.Point = [](double u, double v) -> Vec3
+  {
+    const double x = 2.0 * u - 1.0;
+    return { x, 2.0 * v - 1.0, std::abs(x) };
+  };
+  for (bool mesh : { true, false })
+  {
+    vtkSmartPointer<vtkPolyData> input = Grid(crease, 30, 30, false, mesh, mesh ? 0.0 : 0.3);
+    vtkNew<vtkDifferentialPointGenerator> filter;
+    filter->SetMaximumPrincipalWidth(0.25);
+    vtkSmartPointer<vtkPolyData> output = Generate(input, filter);
+    vtkDataArray* extents = output->GetPointData()->GetArray("Extents");
+    vtkDataArray* normals = output->GetPointData()->GetArray("Normals");
+    int left = 0, right = 0;
+    for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
+    {
+      EXPECT_LE(extents->GetComponent(i, 0), 0.25);
+      EXPECT_LE(extents->GetComponent(i, 1), 0.25);
+      Vec3 x;
+      output->GetPoint(i, x.data());
+      const double nx = normals->GetComponent(i, 0) * (normals->GetComponent(i, 2) < 0 ? -1 : 1);
+      left += x[0] < -0.1 && nx > 0.6 ? 1 : 0;
+      right += x[0] > 0.1 && nx < -0.6 ? 1 : 0;
+    }
+    EXPECT_GT(left, 0);
+    EXPECT_GT(right, 0);
   }
 }
 
