@@ -7,7 +7,9 @@
 // rectangles. The bounds and the values measured are given with each test.
 #include "vtkDifferentialPointGenerator.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
@@ -25,6 +27,8 @@
 #include <functional>
 #include <limits>
 #include <random>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace
@@ -652,10 +656,27 @@ TEST(DifferentialPointGenerator, SimplifiedSphereCoversTheSphere)
   for (vtkPolyData* input : inputs)
   {
     vtkNew<vtkDifferentialPointGenerator> filter;
+    std::vector<double> progress;
+    vtkNew<vtkCallbackCommand> onProgress;
+    onProgress->SetClientData(&progress);
+    onProgress->SetCallback(
+      [](vtkObject*, unsigned long, void* clientData, void* callData) {
+        static_cast<std::vector<double>*>(clientData)->push_back(*static_cast<double*>(callData));
+      });
+    filter->AddObserver(vtkCommand::ProgressEvent, onProgress);
     vtkSmartPointer<vtkPolyData> output = Generate(input, filter);
     std::cout << input->GetNumberOfPoints() << " points on the sphere, "
               << filter->GetNumberOfKeptPoints() << " kept\n";
     EXPECT_EQ(filter->GetNumberOfKeptPoints(), output->GetNumberOfPoints());
+    // Progress through the fits and the simplification, in order, to the end.
+    EXPECT_GT(progress.size(), 5u);
+    EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
+    EXPECT_EQ(progress.back(), 1.0);
+    std::ostringstream printed;
+    filter->Print(printed);
+    EXPECT_NE(
+      printed.str().find("NumberOfKeptPoints: " + std::to_string(filter->GetNumberOfKeptPoints())),
+      std::string::npos);
     EXPECT_LT(filter->GetNumberOfKeptPoints(), input->GetNumberOfPoints() / 10);
     int holes = 0;
     for (int i = 0; i < 20000; ++i)
