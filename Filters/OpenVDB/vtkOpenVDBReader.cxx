@@ -58,7 +58,7 @@ struct vtkOpenVDBReader::Internals
 {
   std::vector<GridInfo> Grids;
   std::string DefaultGrid; // the first supported grid
-  bool ListingFailed = false; // RequestInformation reported why; RequestData says no more
+  std::string ListingError; // why RequestInformation could not list the grids, if it could not
   vtkNew<vtkStringArray> SupportedGridNames;
 };
 
@@ -99,7 +99,7 @@ int vtkOpenVDBReader::RequestInformation(
   internal.Grids.clear();
   internal.DefaultGrid.clear();
   internal.SupportedGridNames->Initialize();
-  internal.ListingFailed = true;
+  internal.ListingError = "no such file";
   // A failed update must not leave the previous grid's outputs behind.
   vtkPolyData::GetData(outputVector, 0)->Initialize();
   vtkImageData::GetData(outputVector, 1)->Initialize();
@@ -167,11 +167,12 @@ int vtkOpenVDBReader::RequestInformation(
     internal.Grids.clear();
     internal.DefaultGrid.clear();
     internal.SupportedGridNames->Initialize();
+    internal.ListingError = e.what();
     vtkErrorMacro("Cannot read the grid list of the OpenVDB file '" << this->FileName
                                                                      << "': " << e.what());
     return 0;
   }
-  internal.ListingFailed = false;
+  internal.ListingError.clear();
 
   // The dense image's extent and geometry, when the file records them.
   const std::string selected =
@@ -212,8 +213,11 @@ int vtkOpenVDBReader::RequestData(
   const std::string fileName = this->FileName ? this->FileName : "";
   const std::string gridName =
     this->GridName && *this->GridName ? this->GridName : this->Internal->DefaultGrid;
-  if (this->Internal->ListingFailed)
+  // VTK 9.1 runs RequestData after a failed RequestInformation: the update fails with its cause.
+  if (!this->Internal->ListingError.empty())
   {
+    vtkErrorMacro("Cannot read the OpenVDB file '" << fileName
+                                                   << "': " << this->Internal->ListingError);
     return 0;
   }
   if (this->Internal->Grids.empty())
