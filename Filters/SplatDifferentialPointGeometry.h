@@ -51,9 +51,12 @@ inline Eigen::Vector3d AxisTangent(const Eigen::Vector3d& n)
 // point.Position and sets point's normal, directions and curvatures from the fitted graph's
 // shape operator (II v = lambda I v). Coordinates are scaled by the neighbors' RMS distance so
 // that the least-squares problem is conditioned alike at every scale. With too few or collinear
-// neighbors only a, b, c are fitted (normal n0), then none (a flat point).
+// neighbors only a, b, c are fitted (normal n0), then none (a flat point). Points whose
+// curvatures differ by less than UmbilicTolerance times the larger of them and flatCurvature
+// are umbilic or flat for the purpose (see below).
+constexpr double UmbilicTolerance = 0.05;
 inline void FitDifferentialPoint(const std::vector<Eigen::Vector3d>& neighbors,
-  const Eigen::Vector3d& n0, DifferentialPoint& point)
+  const Eigen::Vector3d& n0, double flatCurvature, DifferentialPoint& point)
 {
   const Eigen::Vector3d t1 = AxisTangent(n0);
   const Eigen::Vector3d t2 = n0.cross(t1);
@@ -133,11 +136,14 @@ inline void FitDifferentialPoint(const std::vector<Eigen::Vector3d>& neighbors,
   point.CurvatureU = lambda[major];
   point.CurvatureV = lambda[1 - major];
   point.Normal = normal;
-  // Umbilic and flat points (curvatures equal to the fit's precision over the neighborhood)
-  // have no principal directions.
-  const double size = rows > 0 ? std::sqrt(sumSquares / rows) : 0.0;
+  // Umbilic and flat points have no principal directions: those the fit gives them follow
+  // its noise, so that neighboring rectangles would turn every which way (and dense samples
+  // of a sphere or a plane could not cover each other in the simplification). They take the
+  // paper's axis rule, which varies smoothly; the curvatures being equal within the tolerance,
+  // so are the error bounds along any direction.
+  const double scale = std::max({ std::abs(lambda[0]), std::abs(lambda[1]), flatCurvature });
   if (solver.info() != Eigen::Success || !u.allFinite() || u.norm() == 0.0 ||
-    std::abs(lambda[1] - lambda[0]) * size <= 1e-9)
+    std::abs(lambda[1] - lambda[0]) <= UmbilicTolerance * scale)
   {
     u = AxisTangent(normal);
   }

@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <tuple>
 #include <vector>
@@ -393,6 +394,9 @@ int vtkDifferentialPointGenerator::RequestData(
     delta = box.diagonal().norm() / 20.0;
   }
   const double epsilon = this->MaximumPrincipalError;
+  // Below this curvature the error bound leaves the extent at delta: the point is flat.
+  const double flatCurvature = delta > 0.0 ? std::sqrt(2.0 * epsilon - epsilon * epsilon) / delta
+                                           : std::numeric_limits<double>::infinity();
   const int k = static_cast<int>(std::min<vtkIdType>(this->NumberOfNeighbors + 1, n));
 
   std::vector<DifferentialPoint> points(n);
@@ -443,7 +447,7 @@ int vtkDifferentialPointGenerator::RequestData(
 
         DifferentialPoint& point = points[p];
         point.Position = x;
-        splat::FitDifferentialPoint(neighborhood, frame, point);
+        splat::FitDifferentialPoint(neighborhood, frame, flatCurvature, point);
         point.ExtentU = splat::ErrorBoundedExtent(point.CurvatureU, epsilon, delta);
         point.ExtentV = splat::ErrorBoundedExtent(point.CurvatureV, epsilon, delta);
         // Section IV-B: the rectangle holds the midpoints of the edges to the neighbors,

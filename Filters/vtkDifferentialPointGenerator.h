@@ -49,7 +49,10 @@
  * - "Extents" (float, 2): the rectangle's half-widths along PrincipalDirectionU and
  *   PrincipalDirectionV.
  * At umbilic and flat points PrincipalDirectionU is the projection of the x, y or z axis
- * (whichever is longest) onto the tangent plane, as in the paper.
+ * (whichever is longest) onto the tangent plane, as in the paper; points whose curvatures differ
+ * by less than 5% of the larger one (or of the curvature whose bound is delta) count as such,
+ * because their fitted directions follow noise and would turn neighboring rectangles every
+ * which way.
  *
  * Points with a NaN or infinite coordinate are left out and counted
  * (GetNumberOfSkippedPoints()); they take no part in any neighborhood. A mesh's vertices that no
