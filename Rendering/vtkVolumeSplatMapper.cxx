@@ -10,6 +10,7 @@
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkMath.h"
@@ -173,6 +174,16 @@ vtkDataArray* ArrayOf(vtkDataSet* input, const char* name, int components)
 {
   vtkDataArray* array = name ? input->GetPointData()->GetArray(name) : nullptr;
   return array && array->GetNumberOfComponents() == components ? array : nullptr;
+}
+
+// The kernels are built in Render: their progress is reported as VTK's volume mappers report
+// render progress, not as the pipeline's vtkCommand::ProgressEvent. ParaView relays the
+// ProgressEvent of its proxies' objects to the GUI's progress bar, which repaints Qt widgets
+// right away: in the middle of the frame, that made Qt's OpenGL context current (vtkOpenGLState
+// cache errors) and the view came out without the volume.
+void ReportKernelProgress(vtkObject* mapper, double progress)
+{
+  mapper->InvokeEvent(vtkCommand::VolumeMapperRenderProgressEvent, &progress);
 }
 
 bool IsFinite(const double* v, int n)
@@ -492,7 +503,7 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
       }
     });
   std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-  this->UpdateProgress(0.5);
+  ReportKernelProgress(this, 0.5);
   KernelArrays& k = *this->Kernels;
   const vtkIdType n = offsets[nz];
   k.Positions.resize(3 * n);
@@ -541,7 +552,7 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
         }
       }
     });
-  this->UpdateProgress(1.0);
+  ReportKernelProgress(this, 1.0);
   this->NumberOfInvalidKernels = std::accumulate(invalid.begin(), invalid.end(), vtkIdType(0));
   this->NumberOfTransparentKernels = nx * ny * nz - n - this->NumberOfInvalidKernels;
   k.View.SharedCovariance = splat::VoxelCovariance(indexToModel);
@@ -629,7 +640,7 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
   {
     if (i % 65536 == 0)
     {
-      this->UpdateProgress(static_cast<double>(i) / n);
+      ReportKernelProgress(this, static_cast<double>(i) / n);
     }
     double p[3];
     input->GetPoint(i, p);
@@ -733,7 +744,7 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
     k.SphericalHarmonics.insert(
       k.SphericalHarmonics.end(), coefficients.begin(), coefficients.end());
   }
-  this->UpdateProgress(1.0);
+  ReportKernelProgress(this, 1.0);
   k.View.PeakOpacity = opacities != nullptr;
   k.View.ListFrame = glm::dmat3(1.0);
   return true;
