@@ -419,6 +419,24 @@ inline Outcome ReadInChild(const Reader& reader, const std::string& path,
   return code < NumberOfOutcomes ? static_cast<Outcome>(code) : Crash;
 }
 
+/// The fuzz tests' "-read FILE" mode, for a debugger or a sanitizer: reads `path` in this
+/// process and prints its point count or the error.
+inline int ReadOne(const Reader& reader, const std::string& path)
+{
+  try
+  {
+    vtkSmartPointer<vtkDataObject> data = reader(path);
+    std::cout << path << ": " << vtkDataSet::SafeDownCast(data)->GetNumberOfPoints()
+              << " points\n";
+    return EXIT_SUCCESS;
+  }
+  catch (const std::exception& e)
+  {
+    std::cout << e.what() << "\n";
+    return EXIT_FAILURE;
+  }
+}
+
 /// Outcome counts per format, and the failures with what caused them.
 class Tally
 {
@@ -492,6 +510,14 @@ public:
                 << OutcomeName(outcome) << ": " << detail << "\n";
     }
     return outcome == ReadOk;
+  }
+
+  /// Prints the table and the number of failures; returns the test's exit status.
+  int Report(std::ostream& os, int failures) const
+  {
+    this->Print(os);
+    os << failures << " failures\n";
+    return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
   }
 
   void Print(std::ostream& os) const

@@ -31,6 +31,29 @@ struct PLYElement
   std::vector<std::vector<std::vector<double>>> Records;
 };
 
+/// The vertex properties of a 3D Gaussian Splatting capture in the INRIA layout, all float:
+/// x y z nx ny nz f_dc_0..2 f_rest_0..(rest - 1) opacity scale_0..2 rot_0..3.
+inline std::vector<PLYProperty> GaussianCaptureProperties(int rest)
+{
+  std::vector<std::string> names = { "x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1",
+    "f_dc_2" };
+  for (int j = 0; j < rest; ++j)
+  {
+    names.push_back("f_rest_" + std::to_string(j));
+  }
+  for (const char* name :
+    { "opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3" })
+  {
+    names.push_back(name);
+  }
+  std::vector<PLYProperty> properties;
+  for (const std::string& name : names)
+  {
+    properties.push_back({ name, "float", "" });
+  }
+  return properties;
+}
+
 /// Bytes of one value of a PLY type; 0 for an unknown name.
 inline int PLYTypeSize(const std::string& type)
 {

@@ -123,22 +123,7 @@ vtkSmartPointer<vtkPolyData> Kernels(const std::vector<Gaussian>& g, bool harmon
 // The INRIA layout: x y z nx ny nz f_dc_0..2 f_rest_0..(rest - 1) opacity scale_0..2 rot_0..3.
 std::string PLY(const std::vector<Gaussian>& g, int rest)
 {
-  splattest::PLYElement vertex{ "vertex", {}, {} };
-  std::vector<std::string> names = { "x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1",
-    "f_dc_2" };
-  for (int j = 0; j < rest; ++j)
-  {
-    names.push_back("f_rest_" + std::to_string(j));
-  }
-  for (const char* name :
-    { "opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3" })
-  {
-    names.push_back(name);
-  }
-  for (const std::string& name : names)
-  {
-    vertex.Properties.push_back({ name, "float", "" });
-  }
+  splattest::PLYElement vertex{ "vertex", splattest::GaussianCaptureProperties(rest), {} };
   for (const Gaussian& k : g)
   {
     std::vector<double> values(k.Position, k.Position + 3);

@@ -112,26 +112,11 @@ Bytes MeshPLY(const std::string& format)
 // A 3DGS capture in the INRIA layout with degree-1 harmonics: 16 Gaussians.
 Bytes CapturePLY()
 {
-  splattest::PLYElement vertex{ "vertex", {}, {} };
-  std::vector<std::string> names = { "x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1",
-    "f_dc_2" };
-  for (int j = 0; j < 9; ++j)
-  {
-    names.push_back("f_rest_" + std::to_string(j));
-  }
-  for (const char* name :
-    { "opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3" })
-  {
-    names.push_back(name);
-  }
-  for (const std::string& name : names)
-  {
-    vertex.Properties.push_back({ name, "float", "" });
-  }
+  splattest::PLYElement vertex{ "vertex", splattest::GaussianCaptureProperties(9), {} };
   for (int i = 0; i < 16; ++i)
   {
     std::vector<std::vector<double>> record;
-    for (std::size_t p = 0; p < names.size(); ++p)
+    for (std::size_t p = 0; p < vertex.Properties.size(); ++p)
     {
       record.push_back({ 0.125 * ((i * 7 + int(p) * 3) % 17) - 1 });
     }
@@ -312,21 +297,11 @@ int main(int argc, char* argv[])
   const std::string one = splattest::Argument(argc, argv, "-read");
   if (!one.empty())
   {
-    try
-    {
-      const std::string grid = splattest::Argument(argc, argv, "-grid");
-      auto data = splatexample::HasExtension(one, ".vdb") ? VdbGrid(grid)(one)
-        : splatexample::IsGaussianSplatFile(one)          ? ReadCapture(one)
-                                                          : ReadSurface(one);
-      std::cout << one << ": " << vtkDataSet::SafeDownCast(data)->GetNumberOfPoints()
-                << " points\n";
-      return EXIT_SUCCESS;
-    }
-    catch (const std::exception& e)
-    {
-      std::cout << e.what() << "\n";
-      return EXIT_FAILURE;
-    }
+    const std::string grid = splattest::Argument(argc, argv, "-grid");
+    return splatfuzz::ReadOne(splatexample::HasExtension(one, ".vdb") ? VdbGrid(grid)
+        : splatexample::IsGaussianSplatFile(one)                      ? &ReadCapture
+                                                                      : &ReadSurface,
+      one);
   }
   const std::string dir = splattest::Argument(argc, argv, "-T") + "/TestPointReaderFuzz";
   vtksys::SystemTools::MakeDirectory(dir);
@@ -336,7 +311,5 @@ int main(int argc, char* argv[])
   failures += FuzzText(tally, dir);
   failures += FuzzVdb(tally, dir);
   failures += FuzzRealFiles(tally, dir, splattest::Argument(argc, argv, "-D"));
-  tally.Print(std::cout);
-  std::cout << failures << " failures\n";
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return tally.Report(std::cout, failures);
 }

@@ -387,18 +387,7 @@ int main(int argc, char* argv[])
   const std::string one = splattest::Argument(argc, argv, "-read");
   if (!one.empty())
   {
-    try
-    {
-      auto data = splatexample::IsVolumeFile(one) ? ReadImage(one) : ReadSurface(one);
-      std::cout << one << ": " << vtkDataSet::SafeDownCast(data)->GetNumberOfPoints()
-                << " points\n";
-      return EXIT_SUCCESS;
-    }
-    catch (const std::exception& e)
-    {
-      std::cout << e.what() << "\n";
-      return EXIT_FAILURE;
-    }
+    return splatfuzz::ReadOne(splatexample::IsVolumeFile(one) ? &ReadImage : &ReadSurface, one);
   }
   const std::string dir = splattest::Argument(argc, argv, "-T") + "/TestReaderFuzz";
   vtksys::SystemTools::MakeDirectory(dir);
@@ -407,7 +396,5 @@ int main(int argc, char* argv[])
   failures += FuzzXML(tally, dir);
   failures += FuzzMetaImage(tally, dir);
   failures += FuzzNIFTI(tally, dir, "/usr/share/mricron/templates/ch2.nii.gz");
-  tally.Print(std::cout);
-  std::cout << failures << " failures\n";
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return tally.Report(std::cout, failures);
 }
