@@ -22,7 +22,7 @@ import os
 import sys
 
 from splat_checks import check, exit_status
-from splat_images import image_array, mapper_info
+from splat_images import image_array, mapper_info, test_view
 
 # Bounds on the difference from one rank, per scene: the mean absolute difference per channel
 # (0..255) and the share of pixels differing by more than 40 in some channel.
@@ -70,11 +70,7 @@ def main():
         os.makedirs(args.output, exist_ok=True)
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
 
-    view = simple.CreateView("RenderView")
-    view.ViewSize = [300, 300]
-    view.OrientationAxesVisibility = 0
-    view.UseColorPaletteForBackground = 0
-    view.Background = [0.1, 0.1, 0.15]
+    view = test_view(simple)
 
     def reduce(value, operation):
         """VALUE reduced over the ranks (vtkCommunicator: 1 MIN_OP, 2 SUM_OP)."""

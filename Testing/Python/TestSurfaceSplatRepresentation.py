@@ -18,7 +18,7 @@ import os
 import sys
 
 from splat_checks import check, exit_status
-from splat_images import compare_baseline, mapper_info, mean_difference
+from splat_images import compare_baseline, mapper_info, mean_difference, test_view
 
 NAME = "TestSurfaceSplatRepresentation"
 # Settings exposed on the representation: the default, another value, the mapper's information
@@ -52,11 +52,7 @@ def main():
     from paraview import simple
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
 
-    view = simple.CreateView("RenderView")
-    view.ViewSize = [300, 300]
-    view.OrientationAxesVisibility = 0
-    view.UseColorPaletteForBackground = 0
-    view.Background = [0.1, 0.1, 0.15]
+    view = test_view(simple)
     view.CameraPosition = [0.0, 0.0, 4.0]
     view.CameraFocalPoint = [0.0, 0.0, 0.0]
     view.CameraViewUp = [0.0, 1.0, 0.0]

@@ -20,7 +20,7 @@ import os
 import sys
 
 from splat_checks import check, exit_status
-from splat_images import compare_baseline, mapper_info, mean_difference
+from splat_images import compare_baseline, mapper_info, mean_difference, test_view
 
 NAME = "TestVolumeSplatRepresentation"
 # Settings exposed on the representation: the default, another value, the mapper's information
@@ -82,11 +82,7 @@ def main():
     from paraview import simple
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
 
-    view = simple.CreateView("RenderView")
-    view.ViewSize = [300, 300]
-    view.OrientationAxesVisibility = 0
-    view.UseColorPaletteForBackground = 0
-    view.Background = [0.1, 0.1, 0.15]
+    view = test_view(simple)
 
     def screenshot(suffix):
         path = os.path.join(args.output, NAME + suffix + ".png")

@@ -10,6 +10,17 @@ from splat_checks import check
 BASELINE_THRESHOLD = 0.15
 
 
+def test_view(simple):
+    """A 300x300 render view on a fixed dark background without the orientation axes: the view
+    of the representation tests' images."""
+    view = simple.CreateView("RenderView")
+    view.ViewSize = [300, 300]
+    view.OrientationAxesVisibility = 0
+    view.UseColorPaletteForBackground = 0
+    view.Background = [0.1, 0.1, 0.15]
+    return view
+
+
 def image_array(path):
     """The RGB pixels of a PNG file as a (height, width, 3) float array."""
     from vtkmodules.vtkIOImage import vtkPNGReader
