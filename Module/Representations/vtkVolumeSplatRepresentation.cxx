@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkVolumeSplatRepresentation.h"
 
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -20,6 +22,39 @@
 #include <cmath>
 
 vtkStandardNewMacro(vtkVolumeSplatRepresentation);
+
+namespace
+{
+// The image blocks of a composite dataset: their number, and the block when it is the only
+// non-empty block (a reader's or a filter's multiblock holding one volume).
+vtkImageData* SoleImageBlock(vtkDataObject* input, int& imageBlocks)
+{
+  imageBlocks = 0;
+  auto* composite = vtkCompositeDataSet::SafeDownCast(input);
+  if (!composite)
+  {
+    return nullptr;
+  }
+  vtkImageData* image = nullptr;
+  int blocks = 0;
+  vtkSmartPointer<vtkCompositeDataIterator> it;
+  it.TakeReference(composite->NewIterator());
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    auto* block = vtkDataSet::SafeDownCast(it->GetCurrentDataObject());
+    if (block && block->GetNumberOfPoints() > 0)
+    {
+      ++blocks;
+      if (auto* blockImage = vtkImageData::SafeDownCast(block))
+      {
+        ++imageBlocks;
+        image = blockImage;
+      }
+    }
+  }
+  return blocks == 1 ? image : nullptr;
+}
+}
 
 //------------------------------------------------------------------------------
 vtkVolumeSplatRepresentation::vtkVolumeSplatRepresentation()
@@ -100,11 +135,15 @@ int vtkVolumeSplatRepresentation::RequestData(
     vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
     vtkDataObject* input = vtkDataObject::GetData(inInfo);
     vtkSmartPointer<vtkDataSet> cache;
-    if (auto* image = vtkImageData::SafeDownCast(input))
+    auto* image = vtkImageData::SafeDownCast(input);
+    int imageBlocks = 0;
+    vtkImageData* block = image ? nullptr : SoleImageBlock(input, imageBlocks);
+    if (image || block)
     {
+      image = image ? image : block;
       int wholeExtent[6];
       image->GetExtent(wholeExtent);
-      if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+      if (!block && inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
       {
         inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
       }
@@ -118,6 +157,15 @@ int vtkVolumeSplatRepresentation::RequestData(
       }
       cache = owned;
       this->IsImage = true;
+    }
+    else if (imageBlocks > 0)
+    {
+      // Merged into one point set, images lose their grid and have no kernel shapes to draw.
+      vtkErrorMacro("Volume Splats draws one image, or points with Gaussian kernel arrays; this "
+                    "composite dataset holds "
+        << imageBlocks << " image blocks among others: merge them into one image first "
+                          "(for instance with Resample To Image).");
+      cache = vtkSmartPointer<vtkPolyData>::New();
     }
     else
     {

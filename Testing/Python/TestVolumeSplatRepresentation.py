@@ -158,6 +158,36 @@ def main():
     check(unchanged < 0.5, "the defaults restored draw the reference again (%.2f)" % unchanged)
     simple.Hide(wavelet, view)
 
+    # A multiblock holding the one image draws it as that image.
+    group = simple.GroupDatasets(Input=[wavelet])
+    group_display = simple.Show(group, view, Representation="Volume Splats")
+    simple.ColorBy(group_display, ("POINTS", "RTData"))
+    grouped = screenshot("-multiblock")
+    got = (mapper_info(group_display, "VolumeSplatCutoff", "NumberOfKernels"),
+           mapper_info(group_display, "VolumeSplatCutoff", "NumberOfTransparentKernels"))
+    check(got[0] > 0 and sum(got) == voxels,
+          "a multiblock of the one image draws its %d voxels (kernels, transparent %s)"
+          % (voxels, got))
+    difference = mean_difference(reference, grouped)
+    check(difference < 0.5, "and draws the image's picture (mean difference %.2f)" % difference)
+    simple.Hide(group, view)
+
+    # Two images in a multiblock cannot be drawn as one: an error saying so, nothing drawn.
+    from vtkmodules.vtkCommonCore import vtkOutputWindow, vtkStringOutputWindow
+    messages, window = vtkStringOutputWindow(), vtkOutputWindow.GetInstance()
+    vtkOutputWindow.SetInstance(messages)
+    shifted = simple.Wavelet(WholeExtent=[20, 40, -10, 10, -10, 10])
+    pair = simple.GroupDatasets(Input=[wavelet, shifted])
+    pair_display = simple.Show(pair, view, Representation="Volume Splats")
+    simple.ColorBy(pair_display, ("POINTS", "RTData"))
+    simple.Render(view)
+    vtkOutputWindow.SetInstance(window)
+    got = mapper_info(pair_display, "VolumeSplatCutoff", "NumberOfKernels")
+    check("2 image blocks" in messages.GetOutput() and not got,
+          "a multiblock of two images is an error naming them (%r), no kernels (%s)"
+          % (messages.GetOutput()[-160:], got))
+    simple.Hide(pair, view)
+
     # Gaussian kernels with their own colors and opacities, no color array selected.
     gaussians = simple.ProgrammableSource(OutputDataSetType="vtkPolyData",
                                           Script=GAUSSIANS_SCRIPT)
