@@ -12,11 +12,9 @@ with it on. Any failure exits non-zero.
 
 import argparse
 import math
-import os
 import sys
-import traceback
 
-from splat_checks import check, exit_status
+from splat_checks import check, load_plugin, run_tests
 
 
 def test_differential_points(simple, servermanager):
@@ -80,22 +78,10 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--plugin", required=True, help="path of SplatPlugin.so")
     args = parser.parse_args()
-    if not check(os.path.isfile(args.plugin), "plugin file exists: %s" % args.plugin):
+    if not load_plugin(args.plugin, globals()):
         return 1
-
     from paraview import simple, servermanager
-
-    try:
-        simple.LoadPlugin(args.plugin, remote=False, ns=globals())
-    except Exception as error:  # a plugin that does not load fails the test
-        check(False, "LoadPlugin: %s" % error)
-        return 1
-    try:
-        test_differential_points(simple, servermanager)
-    except Exception:
-        traceback.print_exc()
-        check(False, "exception (see above)")
-    return exit_status()
+    return run_tests((lambda: test_differential_points(simple, servermanager),))
 
 
 if __name__ == "__main__":

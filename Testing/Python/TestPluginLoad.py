@@ -25,11 +25,9 @@ Any failure exits non-zero (a missing plugin, class or proxy included).
 
 import argparse
 import math
-import os
 import sys
-import traceback
 
-from splat_checks import check, exit_status, info_value
+from splat_checks import check, info_value, load_plugin, run_tests
 
 
 def check_defaults_and_enumerations(smproxy, mapper, what, defaults, entries, texts):
@@ -327,28 +325,12 @@ def main():
     parser.add_argument("--plugin", required=True, help="path of SplatPlugin.so")
     args = parser.parse_args()
 
-    if not check(os.path.isfile(args.plugin), "plugin file exists: %s" % args.plugin):
+    if not load_plugin(args.plugin, globals()):
         return 1
-
     from paraview import simple, servermanager
-
-    try:
-        simple.LoadPlugin(args.plugin, remote=False, ns=globals())
-        check(True, "LoadPlugin")
-    except Exception as error:  # a plugin that does not load fails the test
-        check(False, "LoadPlugin: %s" % error)
-        return 1
-
-    for test in (lambda: test_mapper(servermanager),
-                 lambda: test_volume_mapper(servermanager),
-                 lambda: test_surfel_generator(simple, servermanager)):
-        try:
-            test()
-        except Exception:
-            traceback.print_exc()
-            check(False, "exception (see above)")
-
-    return exit_status()
+    return run_tests((lambda: test_mapper(servermanager),
+                      lambda: test_volume_mapper(servermanager),
+                      lambda: test_surfel_generator(simple, servermanager)))
 
 
 if __name__ == "__main__":

@@ -33,9 +33,8 @@ import subprocess
 import sys
 import tempfile
 import time
-import traceback
 
-from splat_checks import check, exit_status, info_value
+from splat_checks import check, info_value, load_plugin, run_tests
 
 
 def close(a, b, tol=1e-5):
@@ -376,29 +375,13 @@ def main():
     parser.add_argument("--vdb-writer", required=True, help="path of splat_write_test_vdb")
     args = parser.parse_args()
 
-    if not check(os.path.isfile(args.plugin), "plugin file exists: %s" % args.plugin):
+    if not load_plugin(args.plugin, globals()):
         return 1
-
     from paraview import simple, servermanager
-
-    try:
-        simple.LoadPlugin(args.plugin, remote=False, ns=globals())
-        check(True, "LoadPlugin")
-    except Exception as error:  # a plugin that does not load fails the test
-        check(False, "LoadPlugin: %s" % error)
-        return 1
-
     with tempfile.TemporaryDirectory(prefix="splat-readers-") as tmp:
-        for test in (lambda: test_vdb(simple, servermanager, args.vdb_writer, tmp),
-                     lambda: test_gaussian_splats(simple, servermanager, tmp),
-                     lambda: test_menus(simple, servermanager)):
-            try:
-                test()
-            except Exception:
-                traceback.print_exc()
-                check(False, "exception (see above)")
-
-    return exit_status()
+        return run_tests((lambda: test_vdb(simple, servermanager, args.vdb_writer, tmp),
+                          lambda: test_gaussian_splats(simple, servermanager, tmp),
+                          lambda: test_menus(simple, servermanager)))
 
 
 if __name__ == "__main__":

@@ -1,6 +1,9 @@
 """Checks shared by the plugin tests: each check prints ok/FAIL, and the test's exit status is
 non-zero when any failed."""
 
+import os
+import traceback
+
 failures = []
 
 
@@ -26,3 +29,29 @@ def exit_status():
         return 1
     print("all checks passed")
     return 0
+
+
+def load_plugin(path, ns):
+    """Loads the plugin at PATH on the client, its constructors into the namespace NS (and
+    paraview.simple); a missing file or a plugin that does not load is a failed check. Returns
+    whether it loaded."""
+    if not check(os.path.isfile(path), "plugin file exists: %s" % path):
+        return False
+    from paraview import simple
+    try:
+        simple.LoadPlugin(path, remote=False, ns=ns)
+    except Exception as error:  # a plugin that does not load fails the test
+        return check(False, "LoadPlugin: %s" % error)
+    return check(True, "LoadPlugin")
+
+
+def run_tests(tests):
+    """Runs each callable of TESTS, an exception counting as a failed check (the others still
+    run); returns the test's exit status."""
+    for test in tests:
+        try:
+            test()
+        except Exception:
+            traceback.print_exc()
+            check(False, "exception (see above)")
+    return exit_status()
