@@ -85,7 +85,8 @@ class Texture
 public:
   virtual ~Texture() = default;
   virtual void Sample(const Vec2& s, Color& rgba) const = 0;
-  virtual void Filter(const Vec2& s, const Sym2& sigma, Color& rgba) const = 0;
+  // samples: for procedural textures, the samples per axis (0: the texture's own setting).
+  virtual void Filter(const Vec2& s, const Sym2& sigma, Color& rgba, int samples = 0) const = 0;
   bool HasAlpha = false;
   bool Repeat = true;
 
@@ -146,7 +147,7 @@ public:
     }
   }
 
-  void Filter(const Vec2& s, const Sym2& sigma, Color& rgba) const override
+  void Filter(const Vec2& s, const Sym2& sigma, Color& rgba, int = 0) const override
   {
     const Vec2 w = this->Wrap(s);
     const double nx = this->Size[0], ny = this->Size[1];
@@ -224,11 +225,11 @@ public:
     }
   }
 
-  void Filter(const Vec2& s, const Sym2& sigma, Color& rgba) const override
+  void Filter(const Vec2& s, const Sym2& sigma, Color& rgba, int samples = 0) const override
   {
     double l[4];
     SqrtFactor(sigma, l);
-    const int n = this->Samples;
+    const int n = samples > 0 ? samples : this->Samples;
     if (n == 1 || !(std::abs(l[0]) + std::abs(l[1]) + std::abs(l[2]) + std::abs(l[3]) > 0.0))
     {
       this->Sample(s, rgba);
@@ -396,6 +397,7 @@ struct OptimalSettings
   int MaximumIterations;
   double Tolerance;
   int Components;
+  int Samples;
 };
 
 struct OptimalStatistics
@@ -435,6 +437,10 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
   const double rho = std::sqrt(settings.Cutoff);
   const int q = settings.Resolution;
   const double cell = 2.0 * rho / q; // node cell side in axis units
+  // Procedural textures at the nodes: the samples per axis scaled down from the surfel's filter
+  // (standard deviation sqrt(1/2)) to the node's (cell / 2).
+  const int nodeSamples =
+    std::max(2, static_cast<int>(std::ceil(settings.Samples * cell * std::sqrt(0.5))));
 
   vtkSMPThreadLocal<Assembly> local;
   vtkSMPThreadLocalObject<vtkIdList> localIds;
@@ -508,7 +514,7 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
           Color f;
           const Vec2 st = { s.S[0] + s.M[0] * u0 + s.M[2] * u1,
             s.S[1] + s.M[1] * u0 + s.M[3] * u1 };
-          texture.Filter(st, MapCovariance(s.M, 0.25 * cell * cell), f);
+          texture.Filter(st, MapCovariance(s.M, 0.25 * cell * cell), f, nodeSamples);
           for (std::size_t a = 0; a < active.size(); ++a)
           {
             const int ia = active[a].first;
@@ -1021,7 +1027,7 @@ int vtkSurfelTextureAcquisition::RequestData(
   if (mode == OPTIMAL && valid > 0 && !this->GetAbortExecute())
   {
     OptimalSettings settings{ this->Cutoff, this->QuadratureResolution, this->Regularization,
-      this->MaximumNumberOfIterations, this->Tolerance, components };
+      this->MaximumNumberOfIterations, this->Tolerance, components, this->ProceduralSamples };
     OptimalStatistics statistics;
     SolveOptimal(surfels, validIds, locator, maxRadius, *texture, settings, w, statistics,
       [this](double fraction) {

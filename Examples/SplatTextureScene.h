@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The textured-plane scene of splat_report and TestSurfelTextureAcquisition: the checkerboard
+// plane of SplatCheckerboardScene.h, sampled by a jittered grid of surfels (spacing h, each point
+// moved by up to Jitter * h along x and y) that carry texture coordinates (s, t) = (x, y) and get
+// their colors from the checkerboard texture by vtkSurfelTextureAcquisition (point sampling,
+// view-independent EWA or the optimal fit). The checkerboard is a procedural texture (a callback
+// giving the exact checks), so the scene's analytic reference (CheckerboardReferences) is the
+// reference of the textured plane too.
+#ifndef SplatTextureScene_h
+#define SplatTextureScene_h
+
+#include "SplatCheckerboardScene.h"
+#include "vtkSurfelTextureAcquisition.h"
+
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <chrono>
+#include <cmath>
+#include <random>
+
+namespace splatexample
+{
+// Jittered surfels over the visible part of the checkerboard plane (the cells that
+// CheckerboardSurfels keeps), radius h, normal +z, texture coordinates (x, y) as the active
+// TCoords; no colors. The jitter is deterministic (seed).
+inline vtkSmartPointer<vtkPolyData> JitteredCheckerboardSurfels(const Checkerboard& board,
+                                                                vtkCamera* camera, int width,
+                                                                int height, double jitter,
+                                                                unsigned seed = 1)
+{
+  vtkNew<vtkMatrix4x4> clip;
+  vtkMatrix4x4::Multiply4x4(
+    camera->GetProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0),
+    camera->GetModelViewTransformMatrix(), clip);
+  const double h = board.Spacing;
+  const double halfWidth = board.Far * 0.6 + 1.0;
+  const long long jmax = std::llround(board.Far / h);
+  const long long imax = static_cast<long long>(std::ceil(halfWidth / h));
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> offset(-jitter * h, jitter * h);
+
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  vtkNew<vtkFloatArray> radii;
+  radii->SetName("Radius");
+  vtkNew<vtkFloatArray> tcoords;
+  tcoords->SetName("TCoords");
+  tcoords->SetNumberOfComponents(2);
+  for (long long j = 0; j < jmax; ++j)
+  {
+    const double y = (j + 0.5) * h;
+    for (long long i = -imax; i < imax; ++i)
+    {
+      const double x = (i + 0.5) * h;
+      const double nearer[4] = { x - std::copysign(std::min(2.0 * h, std::abs(x)), x), y + 2.0 * h,
+                                 0.0, 1.0 };
+      double p[4];
+      clip->MultiplyPoint(nearer, p);
+      const double dx = offset(random), dy = offset(random); // drawn for every cell
+      if (!(p[3] > 0.0) || std::abs(p[0]) > p[3] || std::abs(p[1]) > p[3])
+      {
+        continue;
+      }
+      const double px = x + dx, py = std::min(y + dy, board.Far - 0.05 * h);
+      points->InsertNextPoint(px, py, 0.0);
+      normals->InsertNextTuple3(0.0, 0.0, 1.0);
+      radii->InsertNextValue(static_cast<float>(h));
+      tcoords->InsertNextTuple2(px, py);
+    }
+  }
+  auto surfels = vtkSmartPointer<vtkPolyData>::New();
+  surfels->SetPoints(points);
+  surfels->GetPointData()->SetNormals(normals);
+  surfels->GetPointData()->AddArray(radii);
+  surfels->GetPointData()->SetTCoords(tcoords);
+  return surfels;
+}
+
+// The checkerboard as a procedural texture over (s, t) = (x, y): the exact checks.
+inline vtkSurfelTextureAcquisition::TextureFunction CheckerboardTexture(const Checkerboard& board)
+{
+  return [board](double s, double t, double rgba[4])
+  {
+    const double dark = board.DarkFraction(s, s, t, t);
+    for (int k = 0; k < 3; ++k)
+    {
+      rgba[k] = board.Light[k] + dark * (board.Dark[k] - board.Light[k]);
+    }
+    rgba[3] = 1.0;
+  };
+}
+
+struct AcquiredTexture
+{
+  vtkSmartPointer<vtkPolyData> Surfels; // with the RGB array "TextureColors" as active scalars
+  double Seconds = 0.0;                 // the filter's update
+  int Iterations = 0;
+  vtkIdType Clamped = 0;
+};
+
+// The checkerboard texture acquired onto the surfels with vtkSurfelTextureAcquisition's mode.
+inline AcquiredTexture AcquireCheckerboard(vtkPolyData* surfels, const Checkerboard& board,
+                                           int mode)
+{
+  vtkNew<vtkSurfelTextureAcquisition> acquisition;
+  acquisition->SetInputData(surfels);
+  acquisition->SetTextureFunction(CheckerboardTexture(board));
+  acquisition->SetMode(mode);
+  const auto start = std::chrono::steady_clock::now();
+  acquisition->Update();
+  AcquiredTexture result;
+  result.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.Surfels = acquisition->GetOutput();
+  result.Iterations = acquisition->GetNumberOfIterations();
+  result.Clamped = acquisition->GetNumberOfClampedValues();
+  return result;
+}
+}
+
+#endif
