@@ -26,7 +26,15 @@ struct Light
   glm::vec3 Attenuation{ 1, 0, 0 };    ///< constant, linear, quadratic
   float ConeCosine = -1.0f;            ///< cos(cone angle); spots only when >= 0 and angle < 90
   float Exponent = 1.0f;               ///< spot exponent
+  bool Headlight = false;              ///< a vtkLight of type headlight
 };
+
+/// Whether the lights are VTK's single headlight (its light complexity 1, the default
+/// renderer's light), which VTK shades with the view axis as half vector.
+inline bool HeadlightOnly(const std::vector<Light>& lights)
+{
+  return lights.size() == 1 && lights[0].Headlight && !lights[0].Positional;
+}
 
 /**
  * The vtkProperty terms. The surface color (a point's scalar color or the property's diffuse
@@ -58,6 +66,12 @@ inline glm::vec3 Shade(const std::vector<Light>& lights, const Material& materia
   if (lights.empty())
   {
     return ambient + diffuseColor;
+  }
+  if (HeadlightOnly(lights))
+  {
+    const float df = std::max(0.0f, normal.z);
+    const float sf = df > 0.0f ? std::pow(df, material.SpecularPower) : 0.0f;
+    return ambient + lights[0].Color * (df * diffuseColor + sf * material.Specular);
   }
   const glm::vec3 toEye =
     parallelProjection ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::normalize(-position);

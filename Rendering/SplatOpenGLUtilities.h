@@ -117,6 +117,7 @@ inline void SetLightingUniforms(vtkShaderProgram* program, const std::vector<Lig
     positional[i] = light.Positional;
   }
   program->SetUniformi("numberOfLights", count);
+  program->SetUniformi("headlightOnly", HeadlightOnly(lights));
   if (count > 0)
   {
     program->SetUniform3fv("lightColor", count, color);

@@ -65,6 +65,7 @@ inline std::vector<Light> EyeLights(vtkRenderer* ren, const glm::dmat4& worldToE
       continue;
     }
     l.Direction = glm::vec3(glm::normalize(rotation * direction));
+    l.Headlight = light->LightTypeIsHeadlight();
     if (light->GetPositional())
     {
       l.Positional = true;

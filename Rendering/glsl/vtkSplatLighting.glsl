@@ -5,6 +5,7 @@
 
 const int MaximumLights = 8;
 uniform int numberOfLights;
+uniform int headlightOnly; // SplatLighting.h's HeadlightOnly
 uniform vec3 lightColor[MaximumLights];
 uniform vec3 lightDirection[MaximumLights];
 uniform int lightPositional[MaximumLights];
@@ -27,6 +28,12 @@ vec3 shade(vec3 color, vec3 position, vec3 normal)
   if (numberOfLights == 0)
   {
     return ambientTerm + diffuseColor;
+  }
+  if (headlightOnly != 0)
+  {
+    float df = max(0.0, normal.z);
+    float sf = df > 0.0 ? pow(df, specularPower) : 0.0;
+    return ambientTerm + lightColor[0] * (df * diffuseColor + sf * specular);
   }
   vec3 toEye = parallelProjection != 0 ? vec3(0.0, 0.0, 1.0) : normalize(-position);
   vec3 diffuseSum = vec3(0.0);

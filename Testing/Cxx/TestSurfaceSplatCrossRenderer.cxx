@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Cross-renderer check: a mesh drawn as triangles by vtkPolyDataMapper and as splats from its
-// vertices by vtkSurfaceSplatMapper, same camera, lights and property. The silhouettes must
-// overlap (intersection over union) and the colors inside agree (mean absolute difference).
+// vertices by vtkSurfaceSplatMapper, same camera, lights and property (specular included, which
+// VTK shades differently under its default headlight). The silhouettes must overlap
+// (intersection over union) and the colors inside agree (mean absolute difference).
 #include "SplatTestUtilities.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelGenerator.h"
@@ -29,6 +30,8 @@ vtkSmartPointer<vtkImageData> Render(
   actor->GetProperty()->SetColor(0.8, 0.7, 0.6);
   actor->GetProperty()->SetAmbient(0.1);
   actor->GetProperty()->SetDiffuse(0.9);
+  actor->GetProperty()->SetSpecular(0.3);
+  actor->GetProperty()->SetSpecularPower(20.0);
   vtkNew<vtkRenderer> renderer;
   renderer->AddActor(actor);
   renderer->SetBackground(0.0, 0.0, 0.0);
