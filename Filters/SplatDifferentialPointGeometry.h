@@ -6,6 +6,8 @@
 #ifndef SplatDifferentialPointGeometry_h
 #define SplatDifferentialPointGeometry_h
 
+#include "SplatDifferentialPointNormal.h"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -167,23 +169,14 @@ inline double ErrorBoundedExtent(double lambda, double epsilon, double delta)
   return k * delta > bound ? bound / k : delta;
 }
 
-// The unit normal point predicts at the projection of x onto its tangent plane (eq. 10): the
-// normal moved by the normal's derivative over the arc length of the osculating circle in that
-// direction.
+// The unit normal point predicts at the projection of x onto its tangent plane (eq. 10,
+// SplatDifferentialPointNormal.h).
 inline Eigen::Vector3d PredictedNormal(const DifferentialPoint& point, const Eigen::Vector3d& x)
 {
   const Eigen::Vector2d uv = point.Local(x);
-  const double r = uv.norm();
-  if (r == 0.0)
-  {
-    return point.Normal;
-  }
-  const double kappa =
-    (point.CurvatureU * uv.x() * uv.x() + point.CurvatureV * uv.y() * uv.y()) / (r * r);
-  const double kr = kappa * r;
-  const double arc = std::abs(kr) < 1e-8 ? r : std::asin(std::clamp(kr, -1.0, 1.0)) / kappa;
+  const double g = DifferentialNormalScale(point.CurvatureU, point.CurvatureV, uv.x(), uv.y());
   const Eigen::Vector3d n = point.Normal -
-    (arc / r) * (point.CurvatureU * uv.x() * point.U + point.CurvatureV * uv.y() * point.V);
+    g * (point.CurvatureU * uv.x() * point.U + point.CurvatureV * uv.y() * point.V);
   return n.normalized();
 }
 

@@ -32,8 +32,9 @@ vtkStandardNewMacro(vtkOpenGLSurfaceSplatRasterizer);
 
 namespace
 {
-// Floats per splat in the attribute buffer: position, two axes, normal (3 each), RGBA.
-constexpr int SplatStride = 16;
+// Floats per splat in the attribute buffer: position, two axes, normal (3 each), RGBA, and the
+// principal curvatures of differential points (0 for surfels).
+constexpr int SplatStride = 18;
 constexpr int ApproximateFilterMode = 3;
 // The splatting shader's passes (vtkSurfaceSplatFS.glsl).
 enum SplatPass
@@ -58,6 +59,7 @@ struct vtkOpenGLSurfaceSplatRasterizer::Internals
   glm::dvec3 Shift{ 0.0 };
   GLsizei Count = 0;
   bool Translucent = false;
+  bool Differential = false;
 
   vtkNew<vtkTextureObject> VisibilityDepth[2]; // ping-pong: this layer's and the previous one's
   vtkNew<vtkTextureObject> WeightedColor;
@@ -76,6 +78,8 @@ struct vtkOpenGLSurfaceSplatRasterizer::Internals
   vtkShaderProgram* ReadySplatProgram(vtkOpenGLRenderWindow* window, bool withPointIds);
   void Allocate(vtkOpenGLRenderWindow* window, int width, int height);
   void SetViewUniforms(vtkShaderProgram* program, const vtkSurfaceSplatRasterizer::Camera& camera);
+  void SetSplatUniforms(vtkShaderProgram* program, vtkSurfaceSplatRasterizer* settings,
+    bool approximateFilter, bool cullBackFaces);
   void ResolveLayer(vtkOpenGLRenderWindow* window, const vtkSurfaceSplatRasterizer::Camera& camera,
     const std::vector<splat::Light>& lights, const splat::Material& material,
     vtkSurfaceSplatRasterizer* settings, int layer);
@@ -98,8 +102,8 @@ vtkShaderProgram* vtkOpenGLSurfaceSplatRasterizer::Internals::ReadySplatProgram(
     this->Array->ShaderProgramChanged();
     this->Array->Bind();
     const std::size_t stride = SplatStride * sizeof(float);
-    const std::array<std::pair<const char*, int>, 5> attributes = { { { "position", 3 },
-      { "axis0", 3 }, { "axis1", 3 }, { "normal", 3 }, { "color", 4 } } };
+    const std::array<std::pair<const char*, int>, 6> attributes = { { { "position", 3 },
+      { "axis0", 3 }, { "axis1", 3 }, { "normal", 3 }, { "color", 4 }, { "curvature", 2 } } };
     int offset = 0;
     for (const auto& attribute : attributes)
     {
@@ -195,6 +199,18 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::SetViewUniforms(
 }
 
 //------------------------------------------------------------------------------
+void vtkOpenGLSurfaceSplatRasterizer::Internals::SetSplatUniforms(vtkShaderProgram* program,
+  vtkSurfaceSplatRasterizer* settings, bool approximateFilter, bool cullBackFaces)
+{
+  program->SetUniformf("cutoff", static_cast<float>(settings->GetCutoff()));
+  program->SetUniformi("filterMode",
+    approximateFilter ? ApproximateFilterMode : static_cast<int>(settings->GetFilter()));
+  program->SetUniformi("differential", this->Differential);
+  program->SetUniformi("cullBackFaces", cullBackFaces);
+  program->SetUniformf("depthThreshold", static_cast<float>(settings->GetDepthThreshold()));
+}
+
+//------------------------------------------------------------------------------
 vtkOpenGLSurfaceSplatRasterizer::vtkOpenGLSurfaceSplatRasterizer()
   : Internal(new Internals)
 {
@@ -216,6 +232,7 @@ void vtkOpenGLSurfaceSplatRasterizer::SetSurfels(
   internal.Shift = splat::BoundsCenter(surfels.Positions, n);
   std::vector<float> data(SplatStride * n);
   internal.Translucent = false;
+  internal.Differential = surfels.Curvatures != nullptr;
   for (std::size_t i = 0; i < n; ++i)
   {
     float* d = &data[SplatStride * i];
@@ -228,6 +245,8 @@ void vtkOpenGLSurfaceSplatRasterizer::SetSurfels(
       d[12 + c] = surfels.Colors[3 * i + c];
     }
     d[15] = surfels.Opacities ? surfels.Opacities[i] : 1.0f;
+    d[16] = surfels.Curvatures ? surfels.Curvatures[2 * i] : 0.0f;
+    d[17] = surfels.Curvatures ? surfels.Curvatures[2 * i + 1] : 0.0f;
     internal.Translucent = internal.Translucent || d[15] < 1.0f;
   }
   internal.Attributes->Upload(data, vtkOpenGLBufferObject::ArrayBuffer);
@@ -287,11 +306,8 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
   }
   const bool translucent = internal.Translucent;
   internal.SetViewUniforms(program, camera);
-  program->SetUniformf("cutoff", static_cast<float>(settings->GetCutoff()));
-  program->SetUniformi("filterMode",
-    this->ApproximateFilter ? ApproximateFilterMode : static_cast<int>(settings->GetFilter()));
-  program->SetUniformi("cullBackFaces", settings->GetBackfaceCulling() && !translucent);
-  program->SetUniformf("depthThreshold", static_cast<float>(settings->GetDepthThreshold()));
+  internal.SetSplatUniforms(
+    program, settings, this->ApproximateFilter, settings->GetBackfaceCulling() && !translucent);
   program->SetUniform2f("viewportOrigin", std::array<float, 2>{ 0.0f, 0.0f }.data());
   const bool sceneTest =
     translucent && sceneDepths.size() == static_cast<std::size_t>(width) * height;
@@ -466,11 +482,8 @@ void vtkOpenGLSurfaceSplatRasterizer::RenderSelection(vtkRenderer* renderer,
   int width, height, originX, originY;
   renderer->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
   internal.SetViewUniforms(program, camera);
-  program->SetUniformf("cutoff", static_cast<float>(settings->GetCutoff()));
-  program->SetUniformi("filterMode",
-    this->ApproximateFilter ? ApproximateFilterMode : static_cast<int>(settings->GetFilter()));
-  program->SetUniformi("cullBackFaces", settings->GetBackfaceCulling());
-  program->SetUniformf("depthThreshold", static_cast<float>(settings->GetDepthThreshold()));
+  internal.SetSplatUniforms(
+    program, settings, this->ApproximateFilter, settings->GetBackfaceCulling());
   const float origin[2] = { static_cast<float>(originX), static_cast<float>(originY) };
   program->SetUniform2f("viewportOrigin", origin);
   program->SetUniformi("peel", 0);

@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkSurfaceSplatMapper);
@@ -44,6 +45,7 @@ struct vtkSurfaceSplatMapper::SurfelArrays
   std::vector<float> Axes1;
   std::vector<float> Colors;
   std::vector<float> Opacities; // empty when every opacity is 1
+  std::vector<float> Curvatures; // differential points' lambda_u, lambda_v; empty for surfels
   std::vector<vtkIdType> PointIds; // the input point of each surfel, for picking
   bool ColorsFromScalars = false;
   vtkTimeStamp BuildTime;
@@ -57,6 +59,7 @@ struct vtkSurfaceSplatMapper::SurfelArrays
     s.Axes1 = this->Axes1.data();
     s.Colors = this->Colors.data();
     s.Opacities = this->Opacities.empty() ? nullptr : this->Opacities.data();
+    s.Curvatures = this->Curvatures.empty() ? nullptr : this->Curvatures.data();
     s.Count = this->Normals.size() / 3;
     return s;
   }
@@ -136,6 +139,10 @@ vtkSurfaceSplatMapper::vtkSurfaceSplatMapper()
   this->SetOpacityArrayName("Opacity");
   this->SetTangentAxis0ArrayName("TangentAxis0");
   this->SetTangentAxis1ArrayName("TangentAxis1");
+  this->SetPrincipalDirectionUArrayName("PrincipalDirectionU");
+  this->SetPrincipalDirectionVArrayName("PrincipalDirectionV");
+  this->SetPrincipalCurvaturesArrayName("PrincipalCurvatures");
+  this->SetExtentsArrayName("Extents");
 }
 
 //------------------------------------------------------------------------------
@@ -145,6 +152,10 @@ vtkSurfaceSplatMapper::~vtkSurfaceSplatMapper()
   this->SetOpacityArrayName(nullptr);
   this->SetTangentAxis0ArrayName(nullptr);
   this->SetTangentAxis1ArrayName(nullptr);
+  this->SetPrincipalDirectionUArrayName(nullptr);
+  this->SetPrincipalDirectionVArrayName(nullptr);
+  this->SetPrincipalCurvaturesArrayName(nullptr);
+  this->SetExtentsArrayName(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -278,13 +289,29 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
   }
 
   vtkPointData* pointData = input->GetPointData();
-  auto vectorArray = [pointData](const char* name) -> vtkDataArray*
+  auto namedArray = [pointData](const char* name, int components) -> vtkDataArray*
   {
     vtkDataArray* array = name ? pointData->GetArray(name) : nullptr;
-    return array && array->GetNumberOfComponents() == 3 ? array : nullptr;
+    return array && array->GetNumberOfComponents() == components ? array : nullptr;
   };
-  vtkDataArray* axis0 = vectorArray(this->TangentAxis0ArrayName);
-  vtkDataArray* axis1 = vectorArray(this->TangentAxis1ArrayName);
+  const bool differential = this->Primitive == DIFFERENTIAL_POINTS;
+  vtkDataArray* axis0 = namedArray(
+    differential ? this->PrincipalDirectionUArrayName : this->TangentAxis0ArrayName, 3);
+  vtkDataArray* axis1 = namedArray(
+    differential ? this->PrincipalDirectionVArrayName : this->TangentAxis1ArrayName, 3);
+  vtkDataArray* curvatures =
+    differential ? namedArray(this->PrincipalCurvaturesArrayName, 2) : nullptr;
+  vtkDataArray* extents = differential ? namedArray(this->ExtentsArrayName, 2) : nullptr;
+  if (differential && !(axis0 && axis1 && curvatures && extents))
+  {
+    auto name = [](const char* n) { return n ? n : "(none)"; };
+    vtkErrorMacro("Differential points need the point-data arrays '"
+      << name(this->PrincipalDirectionUArrayName) << "' and '"
+      << name(this->PrincipalDirectionVArrayName) << "' (3 components), '"
+      << name(this->PrincipalCurvaturesArrayName) << "' and '" << name(this->ExtentsArrayName)
+      << "' (2 components); vtkDifferentialPointGenerator makes them.");
+    return false;
+  }
   if (!axis0 || !axis1)
   {
     axis0 = axis1 = nullptr;
@@ -334,6 +361,7 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
   s.Axes1.clear();
   s.Colors.clear();
   s.Opacities.clear();
+  s.Curvatures.clear();
   s.PointIds.clear();
   bool translucent = false;
   for (auto* v : { &s.Normals, &s.Axes0, &s.Axes1, &s.Colors })
@@ -348,10 +376,22 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
     input->GetPoint(i, p);
     glm::dvec3 normal(0.0), t0, t1;
     bool valid = IsFinite(p, 3);
+    double curvature[2] = { 0.0, 0.0 };
     if (axis0)
     {
       axis0->GetTuple(i, &t0.x);
       axis1->GetTuple(i, &t1.x);
+      if (differential)
+      {
+        // Principal directions scaled by the rectangle's half-widths.
+        double extent[2];
+        extents->GetTuple(i, extent);
+        curvatures->GetTuple(i, curvature);
+        valid = valid && extent[0] > 0.0 && extent[1] > 0.0 && IsFinite(extent, 2) &&
+          IsFinite(curvature, 2);
+        t0 *= extent[0] / glm::length(t0);
+        t1 *= extent[1] / glm::length(t1);
+      }
       const glm::dvec3 cross = glm::cross(t0, t1);
       valid = valid && IsFinite(&t0.x, 3) && IsFinite(&t1.x, 3) && glm::length(cross) > 0.0;
       if (normals)
@@ -394,6 +434,11 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
       (std::isnan(pointOpacity) ? 1.0 : std::min(std::max(pointOpacity, 0.0), 1.0));
     s.Opacities.push_back(static_cast<float>(opacity));
     s.PointIds.push_back(i);
+    if (differential)
+    {
+      s.Curvatures.push_back(static_cast<float>(curvature[0]));
+      s.Curvatures.push_back(static_cast<float>(curvature[1]));
+    }
     translucent = translucent || opacity < 1.0;
     for (int c = 0; c < 3; ++c)
     {
@@ -413,8 +458,9 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
   if (skipped > 0)
   {
     vtkWarningMacro(<< skipped << " of " << n
-                    << " points skipped: non-finite position, normal, radius or axis, zero "
-                       "normal, non-positive radius or parallel axes.");
+                    << " points skipped: non-finite position, normal, radius, axis or "
+                       "curvature, zero normal, non-positive radius or extent, or parallel "
+                       "axes.");
   }
   s.BuildTime.Modified();
   return true;
@@ -549,6 +595,15 @@ void vtkSurfaceSplatMapper::ComputeBounds()
       radius = std::isfinite(norm) ? std::max(radius, norm) : radius;
     }
   }
+  vtkDataArray* extents = this->ExtentsArrayName && this->Primitive == DIFFERENTIAL_POINTS
+    ? input->GetPointData()->GetArray(this->ExtentsArrayName)
+    : nullptr;
+  if (extents && extents->GetNumberOfComponents() == 2)
+  {
+    // The filtered footprint reaches sqrt(2) half-widths along each direction.
+    const double norm = std::sqrt(2.0) * extents->GetMaxNorm();
+    radius = std::isfinite(norm) ? std::max(radius, norm) : radius;
+  }
   for (int axis = 0; axis < 3; ++axis)
   {
     double range[2];
@@ -588,6 +643,16 @@ void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TangentAxis1ArrayName: "
      << (this->TangentAxis1ArrayName ? this->TangentAxis1ArrayName : "(none)") << "\n";
   os << indent << "FilterMode: " << this->FilterMode << "\n";
+  os << indent << "Primitive: " << (this->Primitive == SURFELS ? "Surfels" : "DifferentialPoints")
+     << "\n";
+  for (const auto& named : { std::make_pair("PrincipalDirectionUArrayName",
+                               this->PrincipalDirectionUArrayName),
+         std::make_pair("PrincipalDirectionVArrayName", this->PrincipalDirectionVArrayName),
+         std::make_pair("PrincipalCurvaturesArrayName", this->PrincipalCurvaturesArrayName),
+         std::make_pair("ExtentsArrayName", this->ExtentsArrayName) })
+  {
+    os << indent << named.first << ": " << (named.second ? named.second : "(none)") << "\n";
+  }
   os << indent << "Backend: " << vtkSplatBackend::GetBackendAsString(this->Backend) << "\n";
   os << indent << "LastBackend: " << vtkSplatBackend::GetBackendAsString(this->LastBackend)
      << "\n";

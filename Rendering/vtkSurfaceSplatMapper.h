@@ -26,6 +26,21 @@
  * Points with a non-finite position, normal, radius or axis, a zero normal, a non-positive radius
  * or parallel axes are skipped and counted (GetNumberOfSkippedPoints), never drawn.
  *
+ * Differential points (SetPrimitiveToDifferentialPoints; Kalaiah and Varshney, *Modeling and
+ * Rendering of Points with Local Geometry*, 2003), as vtkDifferentialPointGenerator makes them:
+ * each point is the rectangle on its tangent plane spanned by its principal directions
+ * (PrincipalDirectionUArrayName, PrincipalDirectionVArrayName) times its half-widths
+ * (ExtentsArrayName, 2 components), and every pixel it covers is shaded with the normal its
+ * principal curvatures (PrincipalCurvaturesArrayName, 2 components) predict where the pixel's
+ * ray meets the tangent plane (eq. 10 of the paper, computed exactly per pixel, where the paper
+ * picked one of 256 precomputed normal maps). With the EWA filter (the default) each rectangle's
+ * footprint is the Gaussian through its corners, band-limited by the screen low-pass and
+ * normalized with its neighbors as surfels are, so that minified points do not alias; with
+ * FilterMode UNFILTERED it is the paper's rectangle: weight 1 inside, the nearest surface of
+ * the z-buffer, rectangles within the z threshold blended. The actor's rotation, translation
+ * and uniform scale apply exactly; a non-uniform scale bends the predicted normals as if the
+ * curvatures were unscaled.
+ *
  * Each render leaves out what the frame does not need, and counts it: splats outside the view
  * frustum, splats facing away when the actor's property has BackfaceCulling on (for closed,
  * consistently oriented, opaque surfaces), and edge-on splats (foreshortened below a thousandth
@@ -171,6 +186,43 @@ public:
   void SetFilterModeToApproximate() { this->SetFilterMode(APPROXIMATE); }
   ///@}
 
+  /**
+   * What each point is drawn as.
+   */
+  enum Primitives
+  {
+    SURFELS = 0,            ///< Gaussian surfels of a normal and a radius or two tangent axes
+    DIFFERENTIAL_POINTS = 1 ///< rectangles with principal curvatures, shaded per pixel
+  };
+
+  ///@{
+  /**
+   * SURFELS (default) or DIFFERENTIAL_POINTS (see the class description).
+   */
+  vtkSetClampMacro(Primitive, int, SURFELS, DIFFERENTIAL_POINTS);
+  vtkGetMacro(Primitive, int);
+  void SetPrimitiveToSurfels() { this->SetPrimitive(SURFELS); }
+  void SetPrimitiveToDifferentialPoints() { this->SetPrimitive(DIFFERENTIAL_POINTS); }
+  ///@}
+
+  ///@{
+  /**
+   * Names of the differential points' point-data arrays: the principal directions (3
+   * components each; default "PrincipalDirectionU" and "PrincipalDirectionV"), the principal
+   * curvatures along them (2 components, default "PrincipalCurvatures") and the rectangle's
+   * half-widths along them (2 components, default "Extents"), as vtkDifferentialPointGenerator
+   * names them. The normal is the input's point normals, or U x V without them.
+   */
+  vtkSetStringMacro(PrincipalDirectionUArrayName);
+  vtkGetStringMacro(PrincipalDirectionUArrayName);
+  vtkSetStringMacro(PrincipalDirectionVArrayName);
+  vtkGetStringMacro(PrincipalDirectionVArrayName);
+  vtkSetStringMacro(PrincipalCurvaturesArrayName);
+  vtkGetStringMacro(PrincipalCurvaturesArrayName);
+  vtkSetStringMacro(ExtentsArrayName);
+  vtkGetStringMacro(ExtentsArrayName);
+  ///@}
+
   ///@{
   /**
    * The backend: vtkSplatBackend::AUTO (default: OpenGL on a hardware GPU, the CPU under a
@@ -263,6 +315,11 @@ protected:
   char* TangentAxis0ArrayName = nullptr;
   char* TangentAxis1ArrayName = nullptr;
   int FilterMode = EWA;
+  int Primitive = SURFELS;
+  char* PrincipalDirectionUArrayName = nullptr;
+  char* PrincipalDirectionVArrayName = nullptr;
+  char* PrincipalCurvaturesArrayName = nullptr;
+  char* ExtentsArrayName = nullptr;
   int Backend = vtkSplatBackend::AUTO;
   int LastBackend = vtkSplatBackend::AUTO;
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSurfaceSplatRasterizer.h"
 
+#include "SplatDifferentialPointNormal.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
 
@@ -22,6 +23,30 @@ enum CullReason
 
 // Rows per band: small enough to balance the threads, large enough that few kernels straddle bands.
 constexpr int BandHeight = 16;
+
+// The pixels a rectangle p +- a0 +- a1 covers, from its corners' exact projections; false when
+// it covers none or a corner is not in front of the eye.
+bool RectanglePixels(const glm::dmat4& eyeToClip, const glm::dvec2& viewport, const glm::dvec3& p,
+  const glm::dvec3& a0, const glm::dvec3& a1, glm::ivec4& box)
+{
+  glm::dvec2 lo(std::numeric_limits<double>::infinity());
+  glm::dvec2 hi(-std::numeric_limits<double>::infinity());
+  for (const double s0 : { -1.0, 1.0 })
+  {
+    for (const double s1 : { -1.0, 1.0 })
+    {
+      splat::PointProjection corner;
+      if (!splat::ProjectPoint(eyeToClip, viewport, p + s0 * a0 + s1 * a1, corner))
+      {
+        return false;
+      }
+      lo = glm::min(lo, corner.Center);
+      hi = glm::max(hi, corner.Center);
+    }
+  }
+  return splat::CoveredPixels(0.5 * (lo + hi), 0.5 * (hi - lo), static_cast<int>(viewport.x),
+    static_cast<int>(viewport.y), box);
+}
 }
 
 // One surfel after setup, in the single precision the per-pixel loop uses.
@@ -40,6 +65,50 @@ struct vtkSurfaceSplatRasterizer::ScreenSplat
   float Alpha;
 };
 
+// What a differential point adds to its ScreenSplat: where a pixel's view ray meets its tangent
+// plane, and the normal it predicts there.
+struct vtkSurfaceSplatRasterizer::DifferentialSplat
+{
+  // The intersection's coordinates in axis units, s = S.(x, y, 1) + t SRay.(x, y, 1) along the
+  // first axis and the same with T along the second, at eye depth t of pixel (x, y).
+  float S[3], SRay[3];
+  float T[3], TRay[3];
+  float ExtentU, ExtentV;       // the axes' lengths in model units
+  float CurvatureU, CurvatureV; // in inverse model units
+  float U[3], V[3]; // unit eye-space principal directions, negated with a back-facing normal
+
+  // Whether pixel (x, y) at eye depth t lies inside the rectangle; the unit normal predicted
+  // there (eq. 10) into normal, from the splat's normal n.
+  bool Shade(float x, float y, float t, const float* n, bool rectangle, float* normal) const
+  {
+    const float s = this->S[0] * x + this->S[1] * y + this->S[2] +
+      t * (this->SRay[0] * x + this->SRay[1] * y + this->SRay[2]);
+    const float r = this->T[0] * x + this->T[1] * y + this->T[2] +
+      t * (this->TRay[0] * x + this->TRay[1] * y + this->TRay[2]);
+    if (rectangle && !(std::abs(s) <= 1.0f && std::abs(r) <= 1.0f))
+    {
+      return false;
+    }
+    const float u = s * this->ExtentU;
+    const float v = r * this->ExtentV;
+    const float g = splat::DifferentialNormalScale(this->CurvatureU, this->CurvatureV, u, v);
+    const float du = g * this->CurvatureU * u;
+    const float dv = g * this->CurvatureV * v;
+    float squared = 0.0f;
+    for (int c = 0; c < 3; ++c)
+    {
+      normal[c] = n[c] - du * this->U[c] - dv * this->V[c];
+      squared += normal[c] * normal[c];
+    }
+    const float scale = 1.0f / std::sqrt(squared);
+    for (int c = 0; c < 3; ++c)
+    {
+      normal[c] *= scale;
+    }
+    return true;
+  }
+};
+
 // One surface's contributions to a pixel (paper 000, table 1). A merged fragment has been
 // shaded: its Weight is negative and Color holds the premultiplied shaded color.
 struct vtkSurfaceSplatRasterizer::Fragment
@@ -56,6 +125,7 @@ struct vtkSurfaceSplatRasterizer::Fragment
 struct vtkSurfaceSplatRasterizer::Internals
 {
   std::vector<ScreenSplat> Splats;
+  std::vector<DifferentialSplat> DifferentialSplats; // parallel to Splats; empty for surfels
   std::vector<vtkIdType> BandOffsets; // per band, into BandSplats
   std::vector<vtkIdType> BandSplats;  // splat indices, band by band, in input order
 };
@@ -64,8 +134,46 @@ namespace
 {
 using Fragment = vtkSurfaceSplatRasterizer::Fragment;
 using ScreenSplat = vtkSurfaceSplatRasterizer::ScreenSplat;
+using DifferentialSplat = vtkSurfaceSplatRasterizer::DifferentialSplat;
 
-inline void Accumulate(Fragment& f, float z, float w, const ScreenSplat& s)
+// A differential point's per-pixel terms, in eye space: p its center, a0 and a1 its axes (the
+// principal directions scaled by the half-widths extentU, extentV in model units), curvatures
+// lambda_u, lambda_v.
+void SetUpDifferentialSplat(const splat::PixelRays& rays, const glm::dvec3& p,
+  const glm::dvec3& a0, const glm::dvec3& a1, double extentU, double extentV,
+  const float* curvatures, bool backFacing, DifferentialSplat& d)
+{
+  // The dual basis of the axes: (X - p).b0 and (X - p).b1 are X's coordinates in axis units.
+  const glm::dmat2 inverseGram = glm::inverse(
+    glm::dmat2(glm::dot(a0, a0), glm::dot(a0, a1), glm::dot(a0, a1), glm::dot(a1, a1)));
+  const glm::dvec3 b0 = inverseGram[0][0] * a0 + inverseGram[0][1] * a1;
+  const glm::dvec3 b1 = inverseGram[1][0] * a0 + inverseGram[1][1] * a1;
+  // X = Origin(x, y) + t Direction(x, y), both affine in the pixel (columns A, B, C).
+  const glm::dvec3 s0 = b0 * rays.Origin - glm::dvec3(0.0, 0.0, glm::dot(b0, p));
+  const glm::dvec3 s1 = b0 * rays.Direction;
+  const glm::dvec3 t0 = b1 * rays.Origin - glm::dvec3(0.0, 0.0, glm::dot(b1, p));
+  const glm::dvec3 t1 = b1 * rays.Direction;
+  // Turned with the normal towards the viewer, they turn the predicted normal with it.
+  const double sign = backFacing ? -1.0 : 1.0;
+  const glm::dvec3 u = sign * glm::normalize(a0);
+  const glm::dvec3 v = sign * glm::normalize(a1);
+  for (int c = 0; c < 3; ++c)
+  {
+    d.S[c] = static_cast<float>(s0[c]);
+    d.SRay[c] = static_cast<float>(s1[c]);
+    d.T[c] = static_cast<float>(t0[c]);
+    d.TRay[c] = static_cast<float>(t1[c]);
+    d.U[c] = static_cast<float>(u[c]);
+    d.V[c] = static_cast<float>(v[c]);
+  }
+  d.ExtentU = static_cast<float>(extentU);
+  d.ExtentV = static_cast<float>(extentV);
+  d.CurvatureU = curvatures[0];
+  d.CurvatureV = curvatures[1];
+}
+
+// Contributions carry their own normal: a differential point's varies from pixel to pixel.
+inline void Accumulate(Fragment& f, float z, float w, const float* normal, const ScreenSplat& s)
 {
   f.Depth = std::min(f.Depth, z);
   f.Weight += w;
@@ -73,12 +181,12 @@ inline void Accumulate(Fragment& f, float z, float w, const ScreenSplat& s)
   f.Color[0] += w * s.Color[0];
   f.Color[1] += w * s.Color[1];
   f.Color[2] += w * s.Color[2];
-  f.Normal[0] += w * s.Normal[0];
-  f.Normal[1] += w * s.Normal[1];
-  f.Normal[2] += w * s.Normal[2];
+  f.Normal[0] += w * normal[0];
+  f.Normal[1] += w * normal[1];
+  f.Normal[2] += w * normal[2];
 }
 
-Fragment NewFragment(float z, float w, const ScreenSplat& s)
+Fragment NewFragment(float z, float w, const float* normal, const ScreenSplat& s)
 {
   Fragment f;
   f.Depth = z;
@@ -87,7 +195,7 @@ Fragment NewFragment(float z, float w, const ScreenSplat& s)
   for (int c = 0; c < 3; ++c)
   {
     f.Color[c] = w * s.Color[c];
-    f.Normal[c] = w * s.Normal[c];
+    f.Normal[c] = w * normal[c];
   }
   return f;
 }
@@ -95,8 +203,8 @@ Fragment NewFragment(float z, float w, const ScreenSplat& s)
 // An opaque contribution to a pixel's fragments, sorted front to back: it joins the surface
 // within its z threshold, or becomes a new surface; what falls behind the last of `layers`
 // fragments is hidden and dropped.
-inline void AddOpaque(
-  Fragment* fragments, std::uint8_t& count, int layers, float z, float w, const ScreenSplat& s)
+inline void AddOpaque(Fragment* fragments, std::uint8_t& count, int layers, float z, float w,
+  const float* normal, const ScreenSplat& s)
 {
   int i = 0;
   while (i < count && z > fragments[i].Depth + s.Threshold)
@@ -105,7 +213,7 @@ inline void AddOpaque(
   }
   if (i < count && z >= fragments[i].Depth - s.Threshold)
   {
-    Accumulate(fragments[i], z, w, s);
+    Accumulate(fragments[i], z, w, normal, s);
     return;
   }
   if (i == layers)
@@ -117,7 +225,7 @@ inline void AddOpaque(
   {
     fragments[j] = fragments[j - 1];
   }
-  fragments[i] = NewFragment(z, w, s);
+  fragments[i] = NewFragment(z, w, normal, s);
   count = static_cast<std::uint8_t>(kept + 1);
 }
 
@@ -272,6 +380,16 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const splat::KernelFilter filter = this->Filter;
   // Hidden back faces may only be left out of an opaque surface.
   const bool cullBackFaces = this->BackfaceCulling && !translucent;
+  const bool differential = surfels.Curvatures != nullptr;
+  const bool rectangles = differential && filter == splat::KernelFilter::Unfiltered;
+  // A filtered differential point's Gaussian passes through its rectangle's corners: axes
+  // sqrt(2) times the half-widths, whose mass in the input's units, R0 R1 = 2 e_u e_v, doubled
+  // is the rectangle's area, so that rectangles that tile the surface sum to one as surfels on
+  // their grid do.
+  const double footprintScale = differential && !rectangles ? std::sqrt(2.0) : 1.0;
+  const float amplitudeScale = differential && !rectangles ? 2.0f : 1.0f;
+  std::vector<DifferentialSplat>& differentials = this->Internal->DifferentialSplats;
+  differentials.resize(differential ? surfels.Count : 0);
 
   // 1. Setup, in eye space.
   std::vector<ScreenSplat>& splats = this->Internal->Splats;
@@ -295,7 +413,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         const glm::dvec3 a0(modelToEye * glm::dvec4(axis0[0], axis0[1], axis0[2], 0.0));
         const glm::dvec3 a1(modelToEye * glm::dvec4(axis1[0], axis1[1], axis1[2], 0.0));
         splat::SurfelProjection projection;
-        if (!splat::ProjectSurfel(eyeToClip, viewport, p, a0, a1, projection))
+        if (!splat::ProjectSurfel(
+              eyeToClip, viewport, p, footprintScale * a0, footprintScale * a1, projection))
         {
           continue;
         }
@@ -315,7 +434,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         const splat::ResamplingKernel kernel =
           splat::MakeResamplingKernel(projection, cutoff, filter);
         glm::ivec4 box;
-        if (!splat::CoveredPixels(kernel.Center, kernel.HalfExtent, width, height, box))
+        if (rectangles ? !RectanglePixels(eyeToClip, viewport, p, a0, a1, box)
+                       : !splat::CoveredPixels(kernel.Center, kernel.HalfExtent, width, height, box))
         {
           continue;
         }
@@ -330,7 +450,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         s.ConicXX = static_cast<float>(0.5 * kernel.Conic[0][0]);
         s.ConicXY = static_cast<float>(kernel.Conic[1][0]);
         s.ConicYY = static_cast<float>(0.5 * kernel.Conic[1][1]);
-        s.Amplitude = static_cast<float>(kernel.Amplitude);
+        s.Amplitude = amplitudeScale * static_cast<float>(kernel.Amplitude);
 
         splat::PlaneDepth depth;
         if (!splat::MakePlaneDepth(rays, p, normal, depth))
@@ -357,6 +477,12 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           s.Color[c] = surfels.Colors[3 * i + c];
         }
         s.Alpha = surfels.Opacities ? surfels.Opacities[i] : 1.0f;
+        if (differential)
+        {
+          SetUpDifferentialSplat(rays, p, a0, a1, glm::length(glm::dvec3(axis0[0], axis0[1],
+            axis0[2])), glm::length(glm::dvec3(axis1[0], axis1[1], axis1[2])),
+            surfels.Curvatures + 2 * i, backFacing, differentials[i]);
+        }
       }
     });
 
@@ -425,25 +551,27 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         for (vtkIdType k = offsets[b]; k < offsets[b + 1]; ++k)
         {
           const ScreenSplat& s = splats[bandSplats[k]];
+          const DifferentialSplat* d = differential ? &differentials[bandSplats[k]] : nullptr;
           const int y0 = std::max(s.Y0, rowBegin);
           const int y1 = std::min(s.Y1, rowEnd);
           for (int y = y0; y <= y1; ++y)
           {
             const float py = y + 0.5f;
             const float dy = py - s.CenterY;
-            // The row's span inside the ellipse: roots of XX dx^2 + XY dy dx + YY dy^2 = cutoff.
+            // The row's span inside the ellipse: roots of XX dx^2 + XY dy dx + YY dy^2 = cutoff;
+            // a rectangle's pixels are tested one by one.
             const float bq = s.ConicXY * dy;
             const float discriminant =
               bq * bq - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - cutoffF);
-            if (!(discriminant > 0.0f))
+            if (!(discriminant > 0.0f) && !rectangles)
             {
               continue;
             }
-            const float root = std::sqrt(discriminant);
+            const float root = std::sqrt(std::max(discriminant, 0.0f));
             const float inverse = 0.5f / s.ConicXX;
-            const int xBegin = std::max(
+            const int xBegin = rectangles ? s.X0 : std::max(
               s.X0, static_cast<int>(std::ceil(s.CenterX + (-bq - root) * inverse - 0.5f)));
-            const int xEnd = std::min(
+            const int xEnd = rectangles ? s.X1 : std::min(
               s.X1, static_cast<int>(std::floor(s.CenterX + (-bq + root) * inverse - 0.5f)));
             // Forward differences along the row (paper 000, section 4): the exponent is
             // quadratic and the depth's numerator and denominator affine in x.
@@ -461,7 +589,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                      betaStep += betaStep2, numerator += s.DepthNumerator[0],
                      denominator += s.DepthDenominator[0])
             {
-              if (!(beta < cutoffF) || beta < 0.0f)
+              if ((!(beta < cutoffF) || beta < 0.0f) && !rectangles)
               {
                 continue; // rounding at the span's ends
               }
@@ -470,16 +598,26 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
               {
                 continue; // hidden by opaque geometry already in the scene
               }
-              const float w = s.Amplitude * exponential(beta);
+              const float* normal = s.Normal;
+              float predicted[3];
+              if (d)
+              {
+                if (!d->Shade(x + 0.5f, py, z, s.Normal, rectangles, predicted))
+                {
+                  continue; // outside the rectangle
+                }
+                normal = predicted;
+              }
+              const float w = rectangles ? 1.0f : s.Amplitude * exponential(beta);
               Fragment* pixelFragments = &this->Fragments[pixel * layers];
               std::uint8_t& count = this->FragmentCounts[pixel];
               if (!translucent)
               {
-                AddOpaque(pixelFragments, count, layers, z, w, s);
+                AddOpaque(pixelFragments, count, layers, z, w, normal, s);
               }
               else
               {
-                this->AddLayered(pixelFragments, count, x, y, z, w, s);
+                this->AddLayered(pixelFragments, count, x, y, z, w, normal, s);
               }
               ++written;
             }
@@ -495,8 +633,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
 }
 
 //------------------------------------------------------------------------------
-void vtkSurfaceSplatRasterizer::AddLayered(
-  Fragment* fragments, std::uint8_t& count, int x, int y, float z, float w, const ScreenSplat& s) const
+void vtkSurfaceSplatRasterizer::AddLayered(Fragment* fragments, std::uint8_t& count, int x, int y,
+  float z, float w, const float* normal, const ScreenSplat& s) const
 {
   // 1. Accumulate-or-separate: the nearest unshaded fragment within the z threshold takes it.
   int nearest = -1;
@@ -512,13 +650,13 @@ void vtkSurfaceSplatRasterizer::AddLayered(
   }
   if (nearest >= 0)
   {
-    Accumulate(fragments[nearest], z, w, s);
+    Accumulate(fragments[nearest], z, w, normal, s);
     return;
   }
   // Fragments stay sorted front to back: insert the new one in place.
   Fragment candidates[MaximumLayers + 1];
   int n = 0;
-  const Fragment added = NewFragment(z, w, s);
+  const Fragment added = NewFragment(z, w, normal, s);
   bool inserted = false;
   for (int i = 0; i < count; ++i)
   {

@@ -22,6 +22,15 @@
  *    normal with VTK's lighting model (SplatLighting.h), coverage from the summed weights
  *    multiplied into alpha (edge antialiasing, section 7), and a back-to-front blend.
  *
+ * Differential points (Kalaiah and Varshney 2003) are surfels with principal curvatures: their
+ * axes are the principal directions scaled by the rectangle's half-widths, and each pixel they
+ * cover takes the normal they predict where its view ray meets their tangent plane
+ * (SplatDifferentialPointNormal.h, eq. 10 of the paper), computed exactly. With the EWA filter
+ * a point's footprint is the elliptical Gaussian through its rectangle's corners (axes sqrt(2)
+ * times the half-widths) with the mass of the rectangle's area, band-limited by the screen
+ * low-pass and normalized like a surfel's; unfiltered, it is the paper's rectangle itself: weight
+ * 1 inside, nothing outside, blended with the rectangles within the z threshold.
+ *
  * Surfels are not validated here: the caller passes finite data only.
  *
  * @sa vtkSurfaceSplatMapper
@@ -126,7 +135,10 @@ public:
   /**
    * Surfels as arrays of n entries: positions and tangent axes are 3-vectors in model
    * coordinates (the axes' lengths are the semi-axes), normals unit 3-vectors, colors RGB in [0,1],
-   * opacities in [0, 1] (null when all are 1).
+   * opacities in [0, 1] (null when all are 1). Differential points add their principal
+   * curvatures (lambda_u, lambda_v along Axes0 and Axes1, signed as dN(u) = -lambda_u u, in
+   * inverse model units); their axes are orthogonal, the principal directions scaled by the
+   * rectangle's half-widths. Null for plain surfels.
    */
   struct Surfels
   {
@@ -136,6 +148,7 @@ public:
     const float* Axes1 = nullptr;
     const float* Colors = nullptr;
     const float* Opacities = nullptr;
+    const float* Curvatures = nullptr;
     std::size_t Count = 0;
   };
 
@@ -168,6 +181,7 @@ public:
   // helper functions can name them.
   struct Fragment;
   struct ScreenSplat;
+  struct DifferentialSplat;
 
   ///@{
   /**
@@ -190,7 +204,7 @@ protected:
   void Splat(const Surfels& surfels, const Camera& camera, const std::vector<splat::Light>& lights,
     const splat::Material& material);
   void AddLayered(Fragment* fragments, std::uint8_t& count, int x, int y, float z, float w,
-    const ScreenSplat& s) const;
+    const float* normal, const ScreenSplat& s) const;
   /// Shaded premultiplied color and alpha (coverage included) of a fragment at pixel (x, y).
   glm::vec4 ShadeFragment(const Fragment& f, int x, int y) const;
   void Resolve();

@@ -4,7 +4,9 @@
 // view ray with the splat's tangent plane (exact for large and near splats, where the affine
 // approximation is not), reject the fragment outside the kernel's cutoff, and write the
 // intersection's linear eye depth, so that the visibility offset is the same distance near and
-// far. The weight is the screen-space EWA kernel of paper 000 eq. (6), set up once per splat.
+// far. The weight is the screen-space EWA kernel of paper 000 eq. (6), set up once per splat;
+// a differential point's normal is the one it predicts where the ray meets its tangent plane
+// (SplatDifferentialPointNormal.h), and unfiltered, its rectangle has weight 1.
 //   pass 0, visibility: depth of the intersection plus the splat's threshold, no color;
 //   pass 1, attributes: weight-times-color, weight, weight-times-normal, weight-times-opacity
 //           and weight-times-depth, added up over the splats within the threshold of pass 0;
@@ -18,12 +20,15 @@ flat in vec3 splatPoint;
 flat in vec3 splatNormal;
 flat in vec3 splatAxis0;
 flat in vec3 splatAxis1;
+flat in vec2 splatExtent;
+flat in vec2 splatCurvature;
 flat in float splatThreshold;
 flat in vec4 splatColor;
 flat in vec2 splatPointId;
 
 uniform int splatPass;
 uniform int filterMode;
+uniform int differential;
 uniform float cutoff;
 uniform int perspective;
 // The view rays: pixel (x, y) sees rayOrigin (x, y, 1) + t rayDirection (x, y, 1) at eye depth t.
@@ -68,6 +73,22 @@ vec3 idColor(float id)
   return vec3(low, middle, high) / 255.0;
 }
 
+// SplatDifferentialPointNormal.h's DifferentialNormalScale, line by line.
+float differentialNormalScale(vec2 curvature, vec2 uv)
+{
+  float r2 = dot(uv, uv);
+  if (!(r2 > 0.0))
+  {
+    return 1.0;
+  }
+  float x = abs(curvature.x * uv.x * uv.x + curvature.y * uv.y * uv.y) / sqrt(r2);
+  if (x < 1e-2)
+  {
+    return 1.0 + x * x / 6.0;
+  }
+  return asin(min(x, 1.0)) / x;
+}
+
 void main()
 {
   vec2 fragment = gl_FragCoord.xy - viewportOrigin;
@@ -78,15 +99,25 @@ void main()
 
   vec2 d = fragment - splatCenter;
   float beta = splatConic.x * d.x * d.x + splatConic.y * d.x * d.y + splatConic.z * d.y * d.y;
+  // Where the ray meets the tangent plane, in axis units.
+  vec2 u = vec2(0.0);
+  if (filterMode == 3 || differential != 0)
+  {
+    vec3 local = origin + t * direction - splatPoint;
+    mat2 gram = mat2(dot(splatAxis0, splatAxis0), dot(splatAxis0, splatAxis1),
+      dot(splatAxis0, splatAxis1), dot(splatAxis1, splatAxis1));
+    u = inverse(gram) * vec2(dot(local, splatAxis0), dot(local, splatAxis1));
+  }
+  bool rectangle = differential != 0 && filterMode == 2;
   if (filterMode == 3)
   {
     // Approximate filter: the larger of the object-space kernel, evaluated where the ray meets
     // the tangent plane, and the screen-space low-pass (Botsch et al. 2005).
-    vec3 local = origin + t * direction - splatPoint;
-    mat2 gram = mat2(dot(splatAxis0, splatAxis0), dot(splatAxis0, splatAxis1),
-      dot(splatAxis0, splatAxis1), dot(splatAxis1, splatAxis1));
-    vec2 u = inverse(gram) * vec2(dot(local, splatAxis0), dot(local, splatAxis1));
     beta = min(beta, dot(u, u)); // 1/2 u^T Vr^-1 u with Vr = 1/2 I
+  }
+  if (rectangle)
+  {
+    beta = max(abs(u.x), abs(u.y)) <= 1.0 ? 0.0 : cutoff;
   }
   // A ray that meets the plane behind the eye does not see the splat.
   if (!(beta < cutoff) || (perspective != 0 && !(t > 0.0)))
@@ -116,9 +147,17 @@ void main()
     gl_FragDepth = linearDepth(t + splatThreshold);
     return;
   }
-  float w = splatAmplitude * exp(-beta);
+  vec3 normal = splatNormal;
+  if (differential != 0)
+  {
+    vec2 uv = u * splatExtent;
+    float g = differentialNormalScale(splatCurvature, uv);
+    normal = normalize(splatNormal - g * (splatCurvature.x * uv.x * normalize(splatAxis0) +
+      splatCurvature.y * uv.y * normalize(splatAxis1)));
+  }
+  float w = rectangle ? 1.0 : splatAmplitude * exp(-beta);
   gl_FragDepth = depth;
   gl_FragData[0] = vec4(w * splatColor.rgb, w);
-  gl_FragData[1] = vec4(w * splatNormal, w * splatColor.a);
+  gl_FragData[1] = vec4(w * normal, w * splatColor.a);
   gl_FragData[2] = vec4(w * t);
 }

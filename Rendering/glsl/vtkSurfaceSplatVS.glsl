@@ -1,14 +1,16 @@
 //VTK::System::Dec
 // SPDX-License-Identifier: BSD-3-Clause
 // Surface splats as instanced quads: one instance per surfel, four vertices (a triangle strip)
-// covering the tight bounding box of its resampling kernel's cutoff ellipse. The per-splat setup
-// mirrors SplatSurfelKernel.h (ProjectSurfel, Foreshortening, MakeResamplingKernel) line by line.
+// covering the tight bounding box of its resampling kernel's cutoff ellipse, or of a differential
+// point's rectangle. The per-splat setup mirrors SplatSurfelKernel.h (ProjectSurfel,
+// Foreshortening, MakeResamplingKernel) and vtkSurfaceSplatRasterizer.cxx line by line.
 
 in vec3 position; // relative to the shift folded into modelToEye
 in vec3 axis0;
 in vec3 axis1;
 in vec3 normal;
 in vec4 color; // rgb, opacity
+in vec2 curvature; // a differential point's principal curvatures along axis0 and axis1
 in vec2 pointId; // the input point's id in two 24-bit halves; selection passes only
 
 uniform mat4 modelToEye;
@@ -19,6 +21,7 @@ uniform float nearDepth;
 uniform float farDepth;
 uniform float cutoff;
 uniform int filterMode; // 0 EWA, 1 circular, 2 unfiltered, 3 approximate
+uniform int differential; // axes are the rectangles' half-widths along the principal directions
 uniform int perspective;
 uniform int cullBackFaces;
 uniform float depthThreshold;
@@ -28,8 +31,10 @@ flat out vec3 splatConic; // 1/2 M^-1 as (xx, 2 xy, yy): beta = dx^2 xx + dx dy 
 flat out float splatAmplitude;
 flat out vec3 splatPoint;   // eye space
 flat out vec3 splatNormal;  // eye space, facing the viewer
-flat out vec3 splatAxis0;   // eye space, for the approximate filter
+flat out vec3 splatAxis0;   // eye space, for the approximate filter and differential points
 flat out vec3 splatAxis1;
+flat out vec2 splatExtent;    // differential points: the axes' lengths in model units
+flat out vec2 splatCurvature; // and the curvatures, negated with a back-facing normal
 flat out float splatThreshold;
 flat out vec4 splatColor;
 flat out vec2 splatPointId;
@@ -65,8 +70,12 @@ void main()
   vec2 ndc = c.xy / c.w;
   vec2 halfSize = 0.5 * viewportSize;
   vec2 center = (ndc + 1.0) * halfSize;
-  vec4 d0 = eyeToClip * vec4(a0, 0.0);
-  vec4 d1 = eyeToClip * vec4(a1, 0.0);
+  // A filtered differential point's Gaussian passes through its rectangle's corners, with the
+  // rectangle's area as its mass; unfiltered, the rectangle itself is drawn.
+  bool rectangle = differential != 0 && filterMode == 2;
+  float footprint = differential != 0 && !rectangle ? sqrt(2.0) : 1.0;
+  vec4 d0 = eyeToClip * vec4(footprint * a0, 0.0);
+  vec4 d1 = eyeToClip * vec4(footprint * a1, 0.0);
   vec2 j0 = (d0.xy - ndc * d0.w) / c.w * halfSize;
   vec2 j1 = (d1.xy - ndc * d1.w) / c.w * halfSize;
 
@@ -114,9 +123,28 @@ void main()
   splatConic = filterMode == 3 ? vec3(0.5, 0.0, 0.5)
                                : vec3(0.5 * myy, -mxy, 0.5 * mxx) / detM;
   splatAmplitude = filterMode == 3 ? 1.0 : abs(detJ) * InverseTwoPi / sqrt(detM);
-  vec2 halfExtent = sqrt(2.0 * cutoff * vec2(mxx, myy));
-  vec2 lo = center - halfExtent;
-  vec2 hi = center + halfExtent;
+  splatAmplitude *= footprint * footprint;
+  vec2 lo = center - sqrt(2.0 * cutoff * vec2(mxx, myy));
+  vec2 hi = 2.0 * center - lo;
+  if (rectangle)
+  {
+    // The box of the corners' exact projections.
+    lo = vec2(1e30);
+    hi = vec2(-1e30);
+    for (int k = 0; k < 4; ++k)
+    {
+      vec3 corner = p + (float(k & 1) * 2.0 - 1.0) * a0 + (float(k >> 1) * 2.0 - 1.0) * a1;
+      vec4 q = eyeToClip * vec4(corner, 1.0);
+      if (!(q.w > 0.0))
+      {
+        cull();
+        return;
+      }
+      vec2 cornerPixel = (q.xy / q.w + 1.0) * halfSize;
+      lo = min(lo, cornerPixel);
+      hi = max(hi, cornerPixel);
+    }
+  }
   if (hi.x < 0.0 || hi.y < 0.0 || lo.x > viewportSize.x || lo.y > viewportSize.y)
   {
     cull();
@@ -128,12 +156,14 @@ void main()
   splatNormal = backFacing ? -n : n; // two-sided lighting
   splatAxis0 = a0;
   splatAxis1 = a1;
+  splatExtent = vec2(length(axis0), length(axis1));
+  splatCurvature = backFacing ? -curvature : curvature;
   splatThreshold = depthThreshold * max(length(a0), length(a1));
   splatColor = color;
   splatPointId = pointId;
 
   // The corner of this vertex, with half a pixel of margin around the box.
   vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
-  vec2 pixel = center + corner * (halfExtent + 0.5);
+  vec2 pixel = 0.5 * (lo + hi) + corner * (0.5 * (hi - lo) + 0.5);
   gl_Position = vec4(pixel / viewportSize * 2.0 - 1.0, 0.0, 1.0);
 }
