@@ -7,14 +7,19 @@ Checks that the filter is in paraview.simple and in the Splat category of the Fi
 its properties have the documented defaults, and that on a sphere of radius 2 it outputs
 polydata with the named arrays, curvatures near -1/2 (the sphere's, outward normals), extents
 of the error bound sqrt(2 eps - eps^2) * 2 (within 3%), one point per vertex with Simplify off and fewer
-with it on. Any failure exits non-zero.
+with it on; and that the Surface Splats representation draws the simplified points as
+differential points (Primitive "Differential Points"): every point taken, none skipped, the
+sphere's disk covered without holes. Any failure exits non-zero.
 """
 
 import argparse
 import math
+import os
 import sys
+import tempfile
 
-from splat_checks import check, load_plugin, run_tests
+from splat_checks import check, info_value, load_plugin, run_tests
+from splat_images import image_array, splat_mapper, test_view
 
 
 def test_differential_points(simple, servermanager):
@@ -70,8 +75,43 @@ def test_differential_points(simple, servermanager):
     check(data is not None and data.GetPointData().GetNormals() is not None
           and data.GetPointData().GetNormals().GetName() == "Normals",
           "fetched output has Normals as its active normals")
+    test_display(simple, points, kept)
     simple.Delete(points)
     simple.Delete(sphere)
+
+
+def test_display(simple, points, kept):
+    """The simplified points drawn by the Surface Splats representation as differential points,
+    both footprints: the mapper takes every point and the sphere's disk has no hole."""
+    view = test_view(simple)
+    view.CameraPosition = [0.0, 0.0, 12.0]
+    view.CameraFocalPoint = [0.0, 0.0, 0.0]
+    view.CameraViewUp = [0.0, 1.0, 0.0]
+    view.CameraViewAngle = 30.0
+    display = simple.Show(points, view, Representation="Surface Splats")
+    display.SurfaceSplatPrimitive = "Differential Points"
+    mapper = splat_mapper(display, "SurfaceSplatPrimitive")
+    background = [255 * c for c in view.Background]
+    for filter_mode in ("EWA", "Unfiltered"):
+        display.SurfaceSplatFilterMode = filter_mode
+        simple.Render(view)
+        check(info_value(mapper, "PrimitiveInfo") == 1,
+              "%s: the mapper draws differential points" % filter_mode)
+        check(info_value(mapper, "NumberOfSplats") == kept,
+              "%s: the mapper took the %d points" % (filter_mode, kept))
+        check(info_value(mapper, "NumberOfSkippedPoints") == 0,
+              "%s: no point skipped (the generator's arrays found)" % filter_mode)
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "differential-points.png")
+            simple.SaveScreenshot(path, view, ImageResolution=[300, 300])
+            pixels = image_array(path)
+        # The sphere of radius 2 at distance 12 under 30 degrees spans about 2 * 300 *
+        # 2 / (12 tan 15 deg) / 2 = 187 pixels: the central 120 x 120 lie well inside.
+        inner = pixels[90:210, 90:210]
+        holes = int((abs(inner - background).sum(axis=2) < 3.0).sum())
+        check(holes == 0, "%s: no background pixel inside the sphere (%d)" % (filter_mode, holes))
+    simple.Delete(display)
+    simple.Delete(view)
 
 
 def main():

@@ -77,7 +77,9 @@ def test_mapper(servermanager):
     # its information-only property. A missing one fails here, before the round trips.
     settings = ["Radius", "RadiusArrayName", "Cutoff", "DepthThreshold", "FilterMode", "Backend",
                 "NumberOfLayers", "EdgeAntialiasing", "CoverageThreshold", "OpacityArrayName",
-                "TangentAxis0ArrayName", "TangentAxis1ArrayName"]
+                "TangentAxis0ArrayName", "TangentAxis1ArrayName", "Primitive",
+                "PrincipalDirectionUArrayName", "PrincipalDirectionVArrayName",
+                "PrincipalCurvaturesArrayName", "ExtentsArrayName"]
     statistics = ["NumberOfSplats", "NumberOfRenderedSplats", "NumberOfCulledSplats",
                   "NumberOfFrustumCulledSplats", "NumberOfBackfaceCulledSplats",
                   "NumberOfNegligibleSplats", "NumberOfSkippedPoints",
@@ -108,10 +110,15 @@ def test_mapper(servermanager):
          "Backend": 0, "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.4,
          "RadiusArrayName": "Radius", "OpacityArrayName": "Opacity",
          "TangentAxis0ArrayName": "TangentAxis0",
-         "TangentAxis1ArrayName": "TangentAxis1"},
+         "TangentAxis1ArrayName": "TangentAxis1", "Primitive": 0,
+         "PrincipalDirectionUArrayName": "PrincipalDirectionU",
+         "PrincipalDirectionVArrayName": "PrincipalDirectionV",
+         "PrincipalCurvaturesArrayName": "PrincipalCurvatures",
+         "ExtentsArrayName": "Extents"},
         {"FilterMode": {"EWA": 0, "Circular": 1, "Unfiltered": 2, "Approximate": 3},
-         "Backend": {"Auto": 0, "CPU": 1, "OpenGL": 2}},
-        {"FilterMode": "EWA", "Backend": "Auto"})
+         "Backend": {"Auto": 0, "CPU": 1, "OpenGL": 2},
+         "Primitive": {"Surfels": 0, "Differential Points": 1}},
+        {"FilterMode": "EWA", "Backend": "Auto", "Primitive": "Surfels"})
 
     # The NumberOfLayers range.
     layers = smproxy.GetProperty("NumberOfLayers").FindDomain("vtkSMIntRangeDomain")
@@ -126,14 +133,19 @@ def test_mapper(servermanager):
     values = {"Cutoff": 2.5, "Radius": 0.125, "DepthThreshold": 0.75, "NumberOfLayers": 5,
               "EdgeAntialiasing": 0, "CoverageThreshold": 0.25}
     strings = {"RadiusArrayName": "SplatRadius", "OpacityArrayName": "SplatOpacity",
-               "TangentAxis0ArrayName": "MajorAxis", "TangentAxis1ArrayName": "MinorAxis"}
+               "TangentAxis0ArrayName": "MajorAxis", "TangentAxis1ArrayName": "MinorAxis",
+               "PrincipalDirectionUArrayName": "MaxDirection",
+               "PrincipalDirectionVArrayName": "MinDirection",
+               "PrincipalCurvaturesArrayName": "Curvatures", "ExtentsArrayName": "HalfWidths"}
     for name, value in list(values.items()) + list(strings.items()):
         setattr(mapper, name, value)
     mapper.FilterMode = "Unfiltered"
     mapper.Backend = "OpenGL"
+    mapper.Primitive = "Differential Points"
     smproxy.UpdateVTKObjects()
     values["FilterMode"] = 2
     values["Backend"] = 2
+    values["Primitive"] = 1
     for name, value in values.items():
         got = info_value(smproxy, name + "Info")
         check(close(got, value), "%s round-trips (set %g, got %s)" % (name, value, got))
@@ -147,9 +159,10 @@ def test_mapper(servermanager):
     mapper.Backend = "CPU"
     mapper.EdgeAntialiasing = 1
     mapper.NumberOfLayers = 8
+    mapper.Primitive = "Surfels"
     smproxy.UpdateVTKObjects()
     for name, value in {"FilterMode": 1, "Backend": 1, "EdgeAntialiasing": 1,
-                        "NumberOfLayers": 8}.items():
+                        "NumberOfLayers": 8, "Primitive": 0}.items():
         got = info_value(smproxy, name + "Info")
         check(close(got, value), "%s round-trips (set %g, got %s)" % (name, value, got))
     check(mapper.FilterMode == "Circular", "FilterMode reads as 'Circular' (got %r)"
