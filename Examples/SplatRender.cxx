@@ -56,7 +56,8 @@ using splatexample::ReadPolyData;
 using splatexample::ReadVolume;
 
 
-// A mapper drawing the surfels vtkSurfelGenerator makes from `data`.
+// A mapper drawing the surfels vtkSurfelGenerator makes from `data`, with the image
+// `options.Texture` acquired onto them when there is one.
 vtkSmartPointer<vtkSurfaceSplatMapper> SplatMapper(vtkPolyData* data, const Options& options)
 {
   vtkNew<vtkSurfelGenerator> surfels;
@@ -68,7 +69,17 @@ vtkSmartPointer<vtkSurfaceSplatMapper> SplatMapper(vtkPolyData* data, const Opti
     throw std::runtime_error("vtkSurfelGenerator made no surfels from the input");
   }
   auto mapper = vtkSmartPointer<vtkSurfaceSplatMapper>::New();
-  mapper->SetInputConnection(surfels->GetOutputPort());
+  if (options.Texture.empty())
+  {
+    mapper->SetInputConnection(surfels->GetOutputPort());
+  }
+  else
+  {
+    mapper->SetInputData(splatexample::AcquireTexture(surfels->GetOutput(),
+      splatexample::ReadTextureImage(options.Texture), options.Acquisition));
+    mapper->ScalarVisibilityOn();
+    mapper->SetColorModeToDirectScalars();
+  }
   if (options.Cutoff)
   {
     mapper->SetCutoff(*options.Cutoff);
@@ -406,8 +417,11 @@ vtkSmartPointer<vtkPolyData> ReadVdbGrid(const std::string& path, const Options&
   return reader->GetOutput();
 }
 
-int RenderDemoScenes(const Options& options)
+int RenderDemoScenes(const Options& given)
 {
+  // --texture is for the textured scene only: the other meshes have no texture coordinates.
+  Options options = given;
+  options.Texture.clear();
   const std::string folder = options.OutputDir.value_or("output/demo");
   vtkSmartPointer<vtkRenderWindow> window = MakeWindow(options);
   int images = 0;
@@ -434,6 +448,21 @@ int RenderDemoScenes(const Options& options)
   std::cout << "sphere: " << SpherePoints << " points colored by the scalar 'Wave'" << std::endl;
   RenderScene(window, ColoredSphere(options), options, folder + "/sphere.png");
   ++images;
+  {
+    splatexample::MakeFolder(folder);
+    const auto [texture, mesh] = splatexample::WriteTexturedDemo(folder);
+    std::cout << "textured: " << mesh << " with " << texture << " (both generated)" << std::endl;
+    Options textured = options;
+    textured.Texture = given.Texture.empty() ? texture : given.Texture;
+    if (!given.ViewDirection && !given.ViewUp) // the sphere's axis is z: seen from the side
+    {
+      textured.ViewDirection = Triple{ -0.68, -0.68, -0.28 };
+      textured.ViewUp = Triple{ 0.0, 0.0, 1.0 };
+    }
+    RenderScene(window, SplatMapper(splatexample::ReadMesh(mesh), textured), textured,
+      folder + "/textured.png");
+    ++images;
+  }
   if (vtkSmartPointer<vtkImageData> head = splatexample::MriHead(1))
   {
     std::cout << "mri: " << splatexample::MriFile() << ", vtkVolumeSplatMapper" << std::endl;
@@ -538,7 +567,7 @@ int RenderFile(const Options& options)
       { PlaceOnBulk(renderer, capture.Kernels, options); });
     return EXIT_SUCCESS;
   }
-  vtkSmartPointer<vtkPolyData> data = ReadPolyData(options.Input);
+  vtkSmartPointer<vtkPolyData> data = splatexample::ReadMesh(options.Input);
   std::cout << options.Input << ": mesh/point cloud: " << data->GetNumberOfPoints()
             << " points, " << data->GetNumberOfPolys() << " polygons, drawn as surface splats"
             << std::endl;

@@ -5,6 +5,7 @@
 
 #include "SplatCommandLine.h"
 #include "SplatFileReaders.h"
+#include "SplatTexturedMesh.h"
 #include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkVolumeSplatMapper.h"
@@ -27,7 +28,7 @@ using Triple = std::array<double, 3>;
 
 const char* const Usage = R"(Usage: splat_render [OPTIONS] [FILE]
 
-Renders FILE (.ply, .vtp, .xyz or .off; a mesh or a point cloud) as EWA surface splats
+Renders FILE (.ply, .vtp, .xyz, .off or .obj; a mesh or a point cloud) as EWA surface splats
 (vtkSurfelGenerator + vtkSurfaceSplatMapper) into a PNG and prints the backend, the number of
 splats, the time per frame and the splats per second. A volume FILE (.nii, .nii.gz, .vti, .mhd
 or .mha: image data with point scalars) is drawn by vtkVolumeSplatMapper, one Gaussian kernel
@@ -42,7 +43,8 @@ kernel per active voxel (vtkVolumeSplatMapper, the transfer function of volume f
 values or the magnitude), level sets as surfels on the surface and point grids as a point cloud
 (vtkSurfaceSplatMapper). splat_render says which it chose.
 Without FILE, renders the demo scenes (the Stanford bunny, or the CGAL armadillo when the bunny
-is absent, a colored sphere, the MRI head of Debian's mricron-data when present, and a cloud
+is absent, a colored sphere, a sphere with a texture the project generates, written as
+texture.png and textured_sphere.obj next to the images and read back, the MRI head of Debian's mricron-data when present, and a cloud
 written as an OpenVDB fog volume by the project, cloud.vdb, next to the images).
 
 .xyz files hold one point per line: "x y z" or "x y z nx ny nz"; lines starting with # are
@@ -70,6 +72,12 @@ Options (a value follows as --name VALUE or --name=VALUE):
                           volumes: vtkVolumeSplatMapper's visibility ordering (default blended)
   --shade on|off          volumes: light the kernels by the scalar gradient (default on)
   --grid NAME             .vdb files: the grid to draw (default the first one supported)
+  --texture IMAGE         meshes with texture coordinates (PLY u,v or s,t; OBJ vt): acquire the
+                          image (PNG, JPEG, TIFF, BMP, PNM) onto the surfels
+                          (vtkSurfelTextureAcquisition) and draw its colors
+  --acquisition point|ewa|optimal
+                          how --texture is acquired: point sampling, view-independent EWA
+                          prefilter (default) or the optimal least-squares fit
   --color r,g,b           splat color in [0,1], replaces the data's own colors
   --background r,g,b      background color in [0,1] (default 0.1,0.1,0.15)
   --frames N              frames timed after one warm-up frame (default 5)
@@ -99,6 +107,8 @@ struct Options
   int Backend = vtkSplatBackend::AUTO;
   int FilterMode = vtkSurfaceSplatMapper::EWA;
   std::optional<Triple> Color;
+  std::string Texture; // image acquired onto the surfels; empty: none
+  int Acquisition = vtkSurfelTextureAcquisition::VIEW_INDEPENDENT_EWA;
   Triple Background = { 0.1, 0.1, 0.15 };
   int Frames = 5;
 };
@@ -268,6 +278,10 @@ inline Options ParseCommandLine(int argc, char* argv[])
       [&](const std::string& name, const std::string& value)
       { options.Shade = ParseChoice(name, value, { { "on", 1 }, { "off", 0 } }) != 0; } },
     { "--grid", [&](const std::string&, const std::string& value) { options.Grid = value; } },
+    { "--texture", [&](const std::string&, const std::string& value) { options.Texture = value; } },
+    { "--acquisition",
+      [&](const std::string& name, const std::string& value)
+      { options.Acquisition = ParseChoice(name, value, splatexample::AcquisitionModes()); } },
     { "--color",
       [&](const std::string& name, const std::string& value)
       { options.Color = ParseColor(name, value); } },

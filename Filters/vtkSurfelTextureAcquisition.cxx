@@ -402,6 +402,7 @@ struct OptimalSettings
 
 struct OptimalStatistics
 {
+  vtkIdType Unknowns = 0;
   vtkIdType NonZeros = 0;
   int Iterations = 0;
   double Error = 0.0;
@@ -421,19 +422,40 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
   const std::function<bool(double)>& progress)
 {
   const auto valid = static_cast<vtkIdType>(validIds.size());
-  std::vector<vtkIdType> validIndex; // surfel id -> valid index
-  {
-    vtkIdType top = 0;
-    for (vtkIdType id : validIds)
+  auto radiusOf = [](const Surfel& s)
+  { return std::sqrt(std::max(Dot(s.A0, s.A0), Dot(s.A1, s.A1))); };
+
+  // Coincident surfels (centers within 1e-6 of the radius) have the same basis function: they
+  // share one unknown, whose basis is the representative's (the lowest index) times their count.
+  std::vector<vtkIdType> representative(valid);
+  vtkSMPThreadLocalObject<vtkIdList> nearIds;
+  vtkSMPTools::For(0, valid, [&](vtkIdType first, vtkIdType last) {
+    vtkIdList* ids = nearIds.Local();
+    for (vtkIdType v = first; v < last; ++v)
     {
-      top = std::max(top, id + 1);
+      const Surfel& s = surfels[validIds[v]];
+      locator->FindPointsWithinRadius(1e-6 * radiusOf(s), s.P.data(), ids);
+      vtkIdType lowest = v;
+      for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+      {
+        lowest = std::min(lowest, ids->GetId(i));
+      }
+      representative[v] = lowest;
     }
-    validIndex.assign(top, -1);
-    for (vtkIdType v = 0; v < valid; ++v)
+  });
+  std::vector<double> multiplicity(valid, 0.0);
+  std::vector<vtkIdType> unknown(valid, -1);
+  vtkIdType unknowns = 0;
+  for (vtkIdType v = 0; v < valid; ++v)
+  {
+    representative[v] = representative[representative[v]]; // chains end at a lower index
+    multiplicity[representative[v]] += 1.0;
+    if (representative[v] == v)
     {
-      validIndex[validIds[v]] = v;
+      unknown[v] = unknowns++;
     }
   }
+  statistics.Unknowns = unknowns;
   const double rho = std::sqrt(settings.Cutoff);
   const int q = settings.Resolution;
   const double cell = 2.0 * rho / q; // node cell side in axis units
@@ -453,8 +475,12 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
     std::vector<std::pair<int, double>> active;
     for (vtkIdType v = first; v < last; ++v)
     {
+      if (representative[v] != v)
+      {
+        continue;
+      }
       const Surfel& s = surfels[validIds[v]];
-      const double radius = std::sqrt(std::max(Dot(s.A0, s.A0), Dot(s.A1, s.A1)));
+      const double radius = radiusOf(s);
       // Every surfel whose support can hold a node of this one: in-plane distance below
       // rho (R_v + R_c) and normal offset below rho R_c.
       locator->FindPointsWithinRadius(
@@ -463,7 +489,7 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
       for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
       {
         const vtkIdType c = ids->GetId(i);
-        if (Dot(surfels[validIds[c]].N, s.N) > 0.0)
+        if (representative[c] == c && Dot(surfels[validIds[c]].N, s.N) > 0.0)
         {
           candidates.push_back(c);
         }
@@ -490,7 +516,7 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
           {
             const Surfel& o = surfels[validIds[candidates[a]]];
             const Vec3 d = { x[0] - o.P[0], x[1] - o.P[1], x[2] - o.P[2] };
-            const double oRadius = std::sqrt(std::max(Dot(o.A0, o.A0), Dot(o.A1, o.A1)));
+            const double oRadius = radiusOf(o);
             Vec2 u;
             if (std::abs(Dot(d, o.N)) > rho * oRadius || !AxisCoordinates(o, d, u))
             {
@@ -499,7 +525,7 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
             const double e = u[0] * u[0] + u[1] * u[1];
             if (e < settings.Cutoff)
             {
-              const double r = std::exp(-e);
+              const double r = multiplicity[candidates[a]] * std::exp(-e);
               active.emplace_back(static_cast<int>(a), r);
               sum += r;
             }
@@ -509,7 +535,8 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
             continue; // cannot happen: the node lies in its own surfel's support
           }
           // The node's weight: cell area times this surfel's share r_v / S of the partition.
-          const double weight = cell * cell * s.Area * std::exp(-own) / sum;
+          const double weight =
+            cell * cell * s.Area * multiplicity[v] * std::exp(-own) / sum;
           const double inverse = 1.0 / sum; // rhat_a = r_a / S
           Color f;
           const Vec2 st = { s.S[0] + s.M[0] * u0 + s.M[2] * u1,
@@ -537,13 +564,13 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
           const double value = gram[a * m + b];
           if (value != 0.0)
           {
-            const vtkIdType ga = candidates[a], gb = candidates[b];
+            const vtkIdType ga = unknown[candidates[a]], gb = unknown[candidates[b]];
             assembly.Entries.emplace_back(std::min(ga, gb), std::max(ga, gb), value);
           }
         }
         if (rhs[a][0] != 0.0 || rhs[a][1] != 0.0 || rhs[a][2] != 0.0 || rhs[a][3] != 0.0)
         {
-          assembly.Rhs.emplace_back(candidates[a], rhs[a]);
+          assembly.Rhs.emplace_back(unknown[candidates[a]], rhs[a]);
         }
       }
     }
@@ -555,7 +582,7 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
 
   // R (upper triangle) and b.
   std::vector<Eigen::Triplet<double>> entries;
-  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(valid, settings.Components);
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(unknowns, settings.Components);
   for (Assembly& assembly : local)
   {
     entries.insert(entries.end(), assembly.Entries.begin(), assembly.Entries.end());
@@ -569,7 +596,7 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
     }
   }
   using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, std::ptrdiff_t>;
-  Matrix a(valid, valid);
+  Matrix a(unknowns, unknowns);
   a.setFromTriplets(entries.begin(), entries.end());
   entries = {};
   a.makeCompressed();
@@ -577,7 +604,7 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
 
   // Tikhonov towards the view-independent result: (R + lambda D) w = b + lambda D w_VI.
   Eigen::VectorXd diagonal = a.diagonal();
-  for (vtkIdType k = 0; k < valid; ++k)
+  for (vtkIdType k = 0; k < unknowns; ++k)
   {
     a.coeffRef(k, k) += settings.Lambda * diagonal[k];
   }
@@ -587,11 +614,14 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
   constexpr int Chunk = 25; // iterations between progress reports
   for (int c = 0; c < settings.Components; ++c)
   {
-    Eigen::VectorXd start(valid), rhs(valid);
-    for (vtkIdType k = 0; k < valid; ++k)
+    Eigen::VectorXd start(unknowns), rhs(unknowns);
+    for (vtkIdType v = 0; v < valid; ++v)
     {
-      start[k] = w[k][c];
-      rhs[k] = b(k, c) + settings.Lambda * diagonal[k] * w[k][c];
+      if (const vtkIdType k = unknown[v]; k >= 0)
+      {
+        start[k] = w[v][c];
+        rhs[k] = b(k, c) + settings.Lambda * diagonal[k] * w[v][c];
+      }
     }
     Eigen::VectorXd x = start;
     int iterations = 0;
@@ -615,9 +645,9 @@ void SolveOptimal(const std::vector<Surfel>& surfels, const std::vector<vtkIdTyp
     {
       continue; // keep the view-independent result
     }
-    for (vtkIdType k = 0; k < valid; ++k)
+    for (vtkIdType v = 0; v < valid; ++v)
     {
-      w[k][c] = x[k];
+      w[v][c] = x[unknown[representative[v]]];
     }
   }
 }
@@ -1034,7 +1064,7 @@ int vtkSurfelTextureAcquisition::RequestData(
         this->UpdateProgress(0.5 + 0.5 * fraction);
         return !this->GetAbortExecute();
       });
-    this->NumberOfUnknowns = valid;
+    this->NumberOfUnknowns = statistics.Unknowns;
     this->NumberOfNonZeros = statistics.NonZeros;
     this->NumberOfIterations = statistics.Iterations;
     this->SolverError = statistics.Error;

@@ -42,15 +42,22 @@
  *   semi-definite (the Gram matrix of the node quadrature); the system is solved with Eigen's
  *   conjugate gradients (Jacobi preconditioner) from the view-independent result.
  *
- * Ill-conditioned systems: coincident surfels have identical rows, a surfel covered by its
- * neighbors' supports has a nearly dependent one, and the solution then oscillates without bound.
- * The filter solves instead the Tikhonov-regularized system (R + lambda D) w = b + lambda D w_VI,
- * D = diag(R), lambda = Regularization (default 1e-3): it pulls each coefficient towards its
- * view-independent value. After Jacobi scaling the matrix's eigenvalues lie in [lambda, m + lambda]
- * with m the most surfels overlapping one node, so its condition number is at most (m + lambda) /
- * lambda (about 1e4 for m = 10); coincident surfels get equal colors, an isolated surfel its
- * view-independent color. Coefficients are clamped to [0, 1] (GetNumberOfClampedValues): the
- * optimal fit overshoots at sharp edges, as any L2 fit does.
+ * Ill-conditioned systems: coincident surfels would have identical rows; they share one unknown
+ * instead (centers within 1e-6 of the radius; the basis of the shared unknown is the
+ * representative's times their number), so they get equal colors. A surfel covered by its
+ * neighbors' supports has a nearly dependent row, and the solution then oscillates without
+ * bound. The filter solves instead the Tikhonov-regularized system
+ * (R + lambda D) w = b + lambda D w_VI, D = diag(R), lambda = Regularization (default 1e-3): it
+ * pulls each coefficient towards its view-independent value. After Jacobi scaling the matrix's
+ * eigenvalues lie in [lambda, m + lambda] with m the most surfels overlapping one node, so its
+ * condition number is at most (m + lambda) / lambda (about 1e4 for m = 10); an isolated surfel
+ * gets its view-independent color. Coefficients are clamped to [0, 1]
+ * (GetNumberOfClampedValues): the optimal fit overshoots at sharp edges, as any L2 fit does.
+ * Cost: per surfel, QuadratureResolution^2 nodes times the surfels within about 2.4 radii, and the
+ * squares of those counts for R; heavily oversampled regions (the poles of a UV sphere, where
+ * hundreds of vertices lie within one radius) cost far more than uniform sampling (about 50 us
+ * per surfel on a jittered plane, 2 threads) and condition the system worse (more CG
+ * iterations).
  *
  * Output: the input surfels with an RGB or RGBA point-data array (OutputArrayName, default
  * "TextureColors", unsigned char or float by OutputScalarType), made the active scalars: draw
@@ -231,7 +238,7 @@ public:
   /**
    * What the last update did: surfels left black (invalid input), surfels point sampled because
    * their affine map could not be fitted, coefficient components clamped to [0, 1], and for
-   * OPTIMAL the unknowns, the nonzeros of R's upper triangle, the conjugate-gradient iterations
+   * OPTIMAL the unknowns (valid surfels, coincident ones counted once), the nonzeros of R's upper triangle, the conjugate-gradient iterations
    * (the most over the channels) and the final relative residual (the largest).
    */
   vtkGetMacro(NumberOfSkippedPoints, vtkIdType);
