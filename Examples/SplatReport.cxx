@@ -27,6 +27,7 @@
 #include "SplatReportCases.h"
 #include "SplatReportImages.h"
 #include "SplatReportOutput.h"
+#include "SplatReportTexture.h"
 #include "SplatVdbScenes.h"
 #include "SplatVolumeReference.h"
 #include "SplatVolumeScenes.h"
@@ -98,6 +99,9 @@ variance), offscreen, and measures each image against a reference:
   checkerboard  a checkerboard plane at a grazing angle (paper 000, figure 8), about 1 M surfels
                 on a regular grid; analytic reference (exact ray/plane intersections, 16x16
                 sub-samples per pixel, unit-variance Gaussian pixel filter)
+  textured-plane  the checkerboard as a texture acquired onto jittered surfels (at most 250 000)
+                by vtkSurfelTextureAcquisition's three modes, checks 4 and 0.6 spacings wide;
+                the analytic reference; acquisition time per surfel (SplatReportTexture.h)
   bunny         the Stanford bunny; reference: the mesh (vtkPolyDataMapper) at 4x4 supersampling
   mri           the MRI head ch2.nii.gz (Debian's mricron-data; skipped when absent), shrunk by
                 --mri-shrink (vtkImageShrink3D, block means), in TestVolumeSplatCrossRenderer's
@@ -127,8 +131,8 @@ absolute difference) for every case. Prints the tables.
 
 Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separated):
   --output-dir DIR   output folder (default $SPLAT_OUTPUT_DIR/report, else output/report)
-  --scenes LIST      checkerboard, bunny, mri, gaussians, vdb (default all; bunny and mri are
-                     skipped when absent)
+  --scenes LIST      checkerboard, textured-plane, bunny, mri, gaussians, vdb (default all;
+                     bunny and mri are skipped when absent)
   --backends LIST    the splat mappers' backends: cpu, opengl (default: both for the surface
                      scenes, cpu for the volume scenes; a list given here applies to both;
                      under a software OpenGL renderer such as llvmpipe the OpenGL rows are slow)
@@ -176,7 +180,7 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--scenes",
       [&](const std::string& name, const std::string& value) {
         options.Scenes = splatexample::SplitList(
-          name, value, { "checkerboard", "bunny", "mri", "gaussians", "vdb" });
+          name, value, { "checkerboard", "textured-plane", "bunny", "mri", "gaussians", "vdb" });
       } },
     { "--backends",
       [&](const std::string& name, const std::string& value) {
@@ -599,6 +603,11 @@ int Run(const Options& options)
        << MarkdownTable(sceneRows, "box-filtered reference") << "\n";
   }
 
+  if (wants("textured-plane"))
+  {
+    md << MeasureTexturedPlane(window, renderer, options);
+  }
+
   if (wants("bunny"))
   {
     if (vtkSmartPointer<vtkPolyData> mesh = BunnyMesh())
@@ -774,7 +783,7 @@ int Run(const Options& options)
        << "direction matrix).\n\n"
        << MarkdownTable(result.Rows, "Gaussian-filtered reference") << "\n";
   }
-  if (rows.empty())
+  if (rows.empty() && !wants("textured-plane"))
   {
     throw std::runtime_error("no scene was measured");
   }
@@ -803,7 +812,10 @@ int Run(const Options& options)
       throw std::runtime_error("cannot write '" + mdPath + "'");
     }
   }
-  WritePlot(scenes, rows, pngPath);
+  if (!scenes.empty()) // the textured-plane scene has its own table and CSV only
+  {
+    WritePlot(scenes, rows, pngPath);
+  }
 
   std::cout << md.str() << "\n";
   const std::string folder = vtksys::SystemTools::CollapseFullPath(options.OutputDir);

@@ -35,7 +35,8 @@ namespace splatreport
 struct Options
 {
   std::string OutputDir;
-  std::vector<std::string> Scenes = { "checkerboard", "bunny", "mri", "gaussians", "vdb" };
+  std::vector<std::string> Scenes = { "checkerboard", "textured-plane", "bunny", "mri",
+    "gaussians", "vdb" };
   std::vector<std::string> Backends = { "cpu", "opengl" };
   std::vector<std::string> VolumeBackends = { "cpu" }; // --backends sets both
   int VolumeSize = 256;
