@@ -12,7 +12,8 @@
 // - the rows near the horizon where a surfel is a pixel or less (minification): all three within
 //   a few percent of each other.
 // The measured figures and the bounds are given with the constants below. With -T DIR the
-// rendered images and the references are written there as PNG files.
+// rendered images and the references are written there as PNG files, and a textured PLY mesh
+// with its texture image for the SplatRenderTexturedMesh test (splat_render --texture).
 #include "SplatTestUtilities.h"
 #include "SplatTextureScene.h"
 #include "vtkSurfaceSplatMapper.h"
@@ -24,6 +25,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -88,6 +90,47 @@ OIIO::ImageBuf Render(vtkRenderWindow* window, vtkRenderer* renderer, vtkPolyDat
   return image;
 }
 
+// For the SplatRenderTexturedMesh test (splat_render --texture): a textured PLY mesh (a 21x21
+// grid of vertices on the unit square, two triangles per cell, texture coordinates u, v) and an
+// 8x8 RGB texture image, both in `directory`.
+bool WriteTexturedMesh(const std::string& directory)
+{
+  constexpr int N = 21;
+  std::ofstream ply(directory + "/TestSurfelTexturePlane.ply");
+  ply << "ply\nformat ascii 1.0\nelement vertex " << N * N
+      << "\nproperty float x\nproperty float y\nproperty float z\nproperty float u\n"
+         "property float v\nelement face "
+      << 2 * (N - 1) * (N - 1) << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int j = 0; j < N; ++j)
+  {
+    for (int i = 0; i < N; ++i)
+    {
+      const double u = i / (N - 1.0), v = j / (N - 1.0);
+      ply << u << " " << v << " 0 " << u << " " << v << "\n";
+    }
+  }
+  for (int j = 0; j + 1 < N; ++j)
+  {
+    for (int i = 0; i + 1 < N; ++i)
+    {
+      const int a = j * N + i;
+      ply << "3 " << a << " " << a + 1 << " " << a + N + 1 << "\n3 " << a << " " << a + N + 1
+          << " " << a + N << "\n";
+    }
+  }
+  OIIO::ImageBuf texture(OIIO::ImageSpec(8, 8, 3, OIIO::TypeDesc::UINT8));
+  for (int y = 0; y < 8; ++y)
+  {
+    for (int x = 0; x < 8; ++x)
+    {
+      const float dark = (x / 2 + y / 2) % 2 ? 0.1f : 0.9f; // checks of 2x2 texels
+      const float rgb[3] = { dark, 0.5f, x / 7.0f };
+      texture.setpixel(x, y, rgb);
+    }
+  }
+  return static_cast<bool>(ply) && texture.write(directory + "/TestSurfelTexture.png");
+}
+
 void Write(const OIIO::ImageBuf& image, const std::string& directory, const std::string& name)
 {
   if (!directory.empty())
@@ -100,6 +143,11 @@ void Write(const OIIO::ImageBuf& image, const std::string& directory, const std:
 int main(int argc, char* argv[])
 {
   const std::string output = splattest::Argument(argc, argv, "-T");
+  if (!output.empty() && !WriteTexturedMesh(output))
+  {
+    std::printf("FAIL: cannot write the textured mesh and its texture into %s\n", output.c_str());
+    return EXIT_FAILURE;
+  }
   vtkNew<vtkRenderer> renderer;
   auto window = splattest::MakeRenderWindow(Width, Height);
   window->AddRenderer(renderer);
