@@ -334,13 +334,13 @@ inline std::array<OIIO::ImageBuf, 2> CheckerboardReferences(
   return images;
 }
 
-// Surfels on the grid of spacing h over the visible part of the plane (cells [ih, (i+1)h] x
-// [jh, (j+1)h], y up to Far), each at its cell's center with radius h, normal +z and the
-// checkerboard's exact mean over its cell (the box prefilter) as an 8-bit RGB color. A cell is
-// kept when the point 2h farther from the camera and 2h closer to the view's center line
+// Calls visit(i, j, visible) for every cell [ih, (i+1)h] x [jh, (j+1)h] of the grid of spacing
+// h over the plane up to y = Far and across the view, row by row; a cell is visible when the
+// point 2h farther from the camera and 2h closer to the view's center line than its center
 // projects into the image, so every splat that can reach a pixel is there.
-inline vtkSmartPointer<vtkPolyData> CheckerboardSurfels(
-  const Checkerboard& board, vtkCamera* camera, int width, int height)
+template <typename Visit>
+void ForEachGridCell(
+  const Checkerboard& board, vtkCamera* camera, int width, int height, Visit&& visit)
 {
   vtkNew<vtkMatrix4x4> clip;
   vtkMatrix4x4::Multiply4x4(
@@ -350,17 +350,6 @@ inline vtkSmartPointer<vtkPolyData> CheckerboardSurfels(
   const double halfWidth = board.Far * 0.6 + 1.0; // beyond the 40-degree horizontal view
   const long long jmax = std::llround(board.Far / h);
   const long long imax = static_cast<long long>(std::ceil(halfWidth / h));
-
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  vtkNew<vtkFloatArray> radii;
-  radii->SetName("Radius");
-  vtkNew<vtkUnsignedCharArray> colors;
-  colors->SetName("Colors");
-  colors->SetNumberOfComponents(3);
   for (long long j = 0; j < jmax; ++j)
   {
     const double y = (j + 0.5) * h;
@@ -371,23 +360,45 @@ inline vtkSmartPointer<vtkPolyData> CheckerboardSurfels(
         y + 2.0 * h, 0.0, 1.0 };
       double p[4];
       clip->MultiplyPoint(nearer, p);
-      if (!(p[3] > 0.0) || std::abs(p[0]) > p[3] || std::abs(p[1]) > p[3])
-      {
-        continue;
-      }
-      points->InsertNextPoint(x, y, 0.0);
-      normals->InsertNextTuple3(0.0, 0.0, 1.0);
-      radii->InsertNextValue(static_cast<float>(h));
-      const double dark = board.DarkFraction(i * h, (i + 1) * h, j * h, (j + 1) * h);
-      unsigned char rgb[3];
-      for (int k = 0; k < 3; ++k)
-      {
-        const double c = board.Light[k] + dark * (board.Dark[k] - board.Light[k]);
-        rgb[k] = static_cast<unsigned char>(std::lround(255.0 * c));
-      }
-      colors->InsertNextTypedTuple(rgb);
+      visit(i, j, p[3] > 0.0 && std::abs(p[0]) <= p[3] && std::abs(p[1]) <= p[3]);
     }
   }
+}
+
+// Surfels on the grid of spacing h over the visible part of the plane (the visible cells of
+// ForEachGridCell, y up to Far), each at its cell's center with radius h, normal +z and the
+// checkerboard's exact mean over its cell (the box prefilter) as an 8-bit RGB color.
+inline vtkSmartPointer<vtkPolyData> CheckerboardSurfels(
+  const Checkerboard& board, vtkCamera* camera, int width, int height)
+{
+  const double h = board.Spacing;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  vtkNew<vtkFloatArray> radii;
+  radii->SetName("Radius");
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("Colors");
+  colors->SetNumberOfComponents(3);
+  ForEachGridCell(board, camera, width, height, [&](long long i, long long j, bool visible) {
+    if (!visible)
+    {
+      return;
+    }
+    points->InsertNextPoint((i + 0.5) * h, (j + 0.5) * h, 0.0);
+    normals->InsertNextTuple3(0.0, 0.0, 1.0);
+    radii->InsertNextValue(static_cast<float>(h));
+    const double dark = board.DarkFraction(i * h, (i + 1) * h, j * h, (j + 1) * h);
+    unsigned char rgb[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      const double c = board.Light[k] + dark * (board.Dark[k] - board.Light[k]);
+      rgb[k] = static_cast<unsigned char>(std::lround(255.0 * c));
+    }
+    colors->InsertNextTypedTuple(rgb);
+  });
   auto surfels = vtkSmartPointer<vtkPolyData>::New();
   surfels->SetPoints(points);
   surfels->GetPointData()->SetNormals(normals);

@@ -12,14 +12,11 @@
 #include "SplatReportCases.h"
 #include "SplatReportImages.h"
 #include "SplatTextureScene.h"
-#include "vtkSurfaceSplatMapper.h"
 
-#include "vtkActor.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
 #include <algorithm>
-#include <chrono>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -82,22 +79,9 @@ inline std::string MeasureTexturedPlane(
                 << std::endl;
       const splatexample::AcquiredTexture acquired =
         splatexample::AcquireCheckerboard(surfels, board, mode);
-      vtkNew<vtkSurfaceSplatMapper> mapper;
-      mapper->SetInputData(acquired.Surfels);
-      mapper->SetRadiusArrayName("Radius");
-      mapper->SetBackendToCPU();
-      vtkNew<vtkActor> actor;
-      actor->SetMapper(mapper);
-      splatexample::StyleCheckerboardActor(actor);
-      renderer->RemoveAllViewProps();
-      renderer->AddActor(actor);
-      window->Render(); // warm-up
-      const auto start = std::chrono::steady_clock::now();
-      window->Render();
-      const double ms =
-        1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const OIIO::ImageBuf image = splatexample::CaptureWindow(window);
-      renderer->RemoveAllViewProps();
+      double ms = 0.0;
+      const OIIO::ImageBuf image =
+        splatexample::RenderTexturedSurfels(window, renderer, acquired.Surfels, &ms);
       const std::string file = "textured-plane-" + checks + "-" + modes[mode] + ".png";
       WriteImage(image, options.OutputDir + "/" + file);
       const double rmse = BandRmse(image, reference, 0, height);

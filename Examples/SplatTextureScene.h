@@ -10,11 +10,15 @@
 #define SplatTextureScene_h
 
 #include "SplatCheckerboardScene.h"
+#include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelTextureAcquisition.h"
+
+#include "vtkActor.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 
 #include "vtkCamera.h"
 #include "vtkFloatArray.h"
-#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -27,25 +31,17 @@
 
 namespace splatexample
 {
-// Jittered surfels over the visible part of the checkerboard plane (the cells that
-// CheckerboardSurfels keeps), radius h, normal +z, texture coordinates (x, y) as the active
+// Jittered surfels over the visible part of the checkerboard plane (the visible cells of
+// ForEachGridCell, as CheckerboardSurfels), radius h, normal +z, texture coordinates (x, y) as the active
 // TCoords; no colors. The jitter is deterministic (seed).
 inline vtkSmartPointer<vtkPolyData> JitteredCheckerboardSurfels(const Checkerboard& board,
                                                                 vtkCamera* camera, int width,
                                                                 int height, double jitter,
                                                                 unsigned seed = 1)
 {
-  vtkNew<vtkMatrix4x4> clip;
-  vtkMatrix4x4::Multiply4x4(
-    camera->GetProjectionTransformMatrix(static_cast<double>(width) / height, -1.0, 1.0),
-    camera->GetModelViewTransformMatrix(), clip);
   const double h = board.Spacing;
-  const double halfWidth = board.Far * 0.6 + 1.0;
-  const long long jmax = std::llround(board.Far / h);
-  const long long imax = static_cast<long long>(std::ceil(halfWidth / h));
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> offset(-jitter * h, jitter * h);
-
   vtkNew<vtkPoints> points;
   vtkNew<vtkFloatArray> normals;
   normals->SetName("Normals");
@@ -55,28 +51,19 @@ inline vtkSmartPointer<vtkPolyData> JitteredCheckerboardSurfels(const Checkerboa
   vtkNew<vtkFloatArray> tcoords;
   tcoords->SetName("TCoords");
   tcoords->SetNumberOfComponents(2);
-  for (long long j = 0; j < jmax; ++j)
-  {
-    const double y = (j + 0.5) * h;
-    for (long long i = -imax; i < imax; ++i)
+  ForEachGridCell(board, camera, width, height, [&](long long i, long long j, bool visible) {
+    const double dx = offset(random), dy = offset(random); // drawn for every cell
+    if (!visible)
     {
-      const double x = (i + 0.5) * h;
-      const double nearer[4] = { x - std::copysign(std::min(2.0 * h, std::abs(x)), x), y + 2.0 * h,
-                                 0.0, 1.0 };
-      double p[4];
-      clip->MultiplyPoint(nearer, p);
-      const double dx = offset(random), dy = offset(random); // drawn for every cell
-      if (!(p[3] > 0.0) || std::abs(p[0]) > p[3] || std::abs(p[1]) > p[3])
-      {
-        continue;
-      }
-      const double px = x + dx, py = std::min(y + dy, board.Far - 0.05 * h);
-      points->InsertNextPoint(px, py, 0.0);
-      normals->InsertNextTuple3(0.0, 0.0, 1.0);
-      radii->InsertNextValue(static_cast<float>(h));
-      tcoords->InsertNextTuple2(px, py);
+      return;
     }
-  }
+    const double px = (i + 0.5) * h + dx;
+    const double py = std::min((j + 0.5) * h + dy, board.Far - 0.05 * h);
+    points->InsertNextPoint(px, py, 0.0);
+    normals->InsertNextTuple3(0.0, 0.0, 1.0);
+    radii->InsertNextValue(static_cast<float>(h));
+    tcoords->InsertNextTuple2(px, py);
+  });
   auto surfels = vtkSmartPointer<vtkPolyData>::New();
   surfels->SetPoints(points);
   surfels->GetPointData()->SetNormals(normals);
@@ -97,6 +84,34 @@ inline vtkSurfelTextureAcquisition::TextureFunction CheckerboardTexture(const Ch
     }
     rgba[3] = 1.0;
   };
+}
+
+// Draws the surfels' colors with vtkSurfaceSplatMapper (CPU backend, default settings) in the
+// checkerboard scene's style and returns the image; with `milliseconds`, after a warm-up frame,
+// the time of one more frame.
+inline OIIO::ImageBuf RenderTexturedSurfels(vtkRenderWindow* window, vtkRenderer* renderer,
+  vtkPolyData* surfels, double* milliseconds = nullptr)
+{
+  vtkNew<vtkSurfaceSplatMapper> mapper;
+  mapper->SetInputData(surfels);
+  mapper->SetRadiusArrayName("Radius");
+  mapper->SetBackendToCPU();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  StyleCheckerboardActor(actor);
+  renderer->RemoveAllViewProps();
+  renderer->AddActor(actor);
+  window->Render();
+  if (milliseconds)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    *milliseconds =
+      1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  OIIO::ImageBuf image = CaptureWindow(window);
+  renderer->RemoveAllViewProps();
+  return image;
 }
 
 struct AcquiredTexture

@@ -16,7 +16,6 @@
 // with its texture image for the SplatRenderTexturedMesh test (splat_render --texture).
 #include "SplatTestUtilities.h"
 #include "SplatTextureScene.h"
-#include "vtkSurfaceSplatMapper.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -71,23 +70,6 @@ double Rmse(const OIIO::ImageBuf& image, const OIIO::ImageBuf& reference, int fi
   const OIIO::ROI roi(0, Width, firstRow, lastRow + 1, 0, 1, 0, 3);
   const auto compared = OIIO::ImageBufAlgo::compare(image, reference, 1.0f, 1.0f, roi);
   return compared.error ? -1.0 : compared.rms_error;
-}
-
-OIIO::ImageBuf Render(vtkRenderWindow* window, vtkRenderer* renderer, vtkPolyData* surfels)
-{
-  vtkNew<vtkSurfaceSplatMapper> mapper;
-  mapper->SetInputData(surfels);
-  mapper->SetRadiusArrayName("Radius");
-  mapper->SetBackendToCPU();
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  splatexample::StyleCheckerboardActor(actor);
-  renderer->RemoveAllViewProps();
-  renderer->AddActor(actor);
-  window->Render();
-  OIIO::ImageBuf image = splatexample::CaptureWindow(window);
-  renderer->RemoveAllViewProps();
-  return image;
 }
 
 // For the SplatRenderTexturedMesh test (splat_render --texture): a textured PLY mesh (a 21x21
@@ -175,7 +157,8 @@ int main(int argc, char* argv[])
     {
       const splatexample::AcquiredTexture acquired =
         splatexample::AcquireCheckerboard(surfels, board, mode);
-      const OIIO::ImageBuf image = Render(window, renderer, acquired.Surfels);
+      const OIIO::ImageBuf image =
+        splatexample::RenderTexturedSurfels(window, renderer, acquired.Surfels);
       Write(image, output, std::string(scene == 0 ? "Texture-" : "TextureFine-") + names[mode]);
       const double magnified = Rmse(image, reference, MagnifiedFirstRow, Height - 1);
       const double minified = Rmse(image, reference, MinifiedFirstRow, MinifiedLastRow);
