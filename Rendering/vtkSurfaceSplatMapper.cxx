@@ -568,6 +568,43 @@ void vtkSurfaceSplatMapper::RenderSelection(
 }
 
 //------------------------------------------------------------------------------
+double vtkSurfaceSplatMapper::LargestSurfelRadius()
+{
+  vtkPointData* pointData = this->GetInput()->GetPointData();
+  double radius = this->Radius;
+  vtkDataArray* radii = this->RadiusArrayName ? pointData->GetArray(this->RadiusArrayName) : nullptr;
+  if (radii && radii->GetNumberOfComponents() == 1)
+  {
+    radius = std::max(radii->GetFiniteRange(0)[1], 0.0);
+  }
+  for (const char* name : { this->TangentAxis0ArrayName, this->TangentAxis1ArrayName })
+  {
+    vtkDataArray* axis = name ? pointData->GetArray(name) : nullptr;
+    if (axis && axis->GetNumberOfComponents() == 3)
+    {
+      const double norm = axis->GetMaxNorm();
+      radius = std::isfinite(norm) ? std::max(radius, norm) : radius;
+    }
+  }
+  return radius;
+}
+
+//------------------------------------------------------------------------------
+double vtkSurfaceSplatMapper::LargestDifferentialExtent()
+{
+  vtkDataArray* extents =
+    this->ExtentsArrayName ? this->GetInput()->GetPointData()->GetArray(this->ExtentsArrayName)
+                           : nullptr;
+  if (!extents || extents->GetNumberOfComponents() != 2)
+  {
+    return 0.0;
+  }
+  // The filtered footprint reaches sqrt(2) half-widths along each direction.
+  const double norm = std::sqrt(2.0) * extents->GetMaxNorm();
+  return std::isfinite(norm) ? norm : 0.0;
+}
+
+//------------------------------------------------------------------------------
 void vtkSurfaceSplatMapper::ComputeBounds()
 {
   // Finite ranges only: a NaN or Inf point is skipped at render time and must not spoil the
@@ -579,31 +616,8 @@ void vtkSurfaceSplatMapper::ComputeBounds()
     return;
   }
   vtkDataArray* points = input->GetPoints()->GetData();
-  double radius = this->Radius;
-  vtkDataArray* radii =
-    this->RadiusArrayName ? input->GetPointData()->GetArray(this->RadiusArrayName) : nullptr;
-  if (radii && radii->GetNumberOfComponents() == 1)
-  {
-    radius = std::max(radii->GetFiniteRange(0)[1], 0.0);
-  }
-  for (const char* name : { this->TangentAxis0ArrayName, this->TangentAxis1ArrayName })
-  {
-    vtkDataArray* axis = name ? input->GetPointData()->GetArray(name) : nullptr;
-    if (axis && axis->GetNumberOfComponents() == 3)
-    {
-      const double norm = axis->GetMaxNorm();
-      radius = std::isfinite(norm) ? std::max(radius, norm) : radius;
-    }
-  }
-  vtkDataArray* extents = this->ExtentsArrayName && this->Primitive == DIFFERENTIAL_POINTS
-    ? input->GetPointData()->GetArray(this->ExtentsArrayName)
-    : nullptr;
-  if (extents && extents->GetNumberOfComponents() == 2)
-  {
-    // The filtered footprint reaches sqrt(2) half-widths along each direction.
-    const double norm = std::sqrt(2.0) * extents->GetMaxNorm();
-    radius = std::isfinite(norm) ? std::max(radius, norm) : radius;
-  }
+  const double radius = this->Primitive == DIFFERENTIAL_POINTS ? this->LargestDifferentialExtent()
+                                                               : this->LargestSurfelRadius();
   for (int axis = 0; axis < 3; ++axis)
   {
     double range[2];

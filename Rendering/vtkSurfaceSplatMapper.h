@@ -298,6 +298,16 @@ protected:
    */
   void ComputeBounds() override;
 
+  ///@{
+  /**
+   * How far splats reach from their points, for the bounds: the largest radius or tangent axis
+   * of surfels, and the largest filtered footprint of differential points. Non-finite values
+   * are left out.
+   */
+  double LargestSurfelRadius();
+  double LargestDifferentialExtent();
+  ///@}
+
   /**
    * Rebuilds the surfel arrays when the input, the mapper or the actor's colors changed.
    * Returns false when the input cannot be drawn.

@@ -134,6 +134,19 @@ inline std::string Argument(int argc, char* argv[], const std::string& flag)
   return std::string();
 }
 
+/// Whether `flag` is on the command line.
+inline bool HasFlag(int argc, char* argv[], const std::string& flag)
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    if (flag == argv[i])
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 inline bool FileExists(const std::string& path)
 {
   struct stat info;
