@@ -437,6 +437,29 @@ TEST(SurfelTextureAcquisition, DegenerateInputGivesFiniteColors)
   }
 }
 
+// Progress events: increasing, ending at 1, several of them in the optimal fit.
+TEST(SurfelTextureAcquisition, ReportsProgress)
+{
+  auto plane = JitteredPlane(30, 0.05, 0.3);
+  vtkNew<vtkSurfelTextureAcquisition> acquisition;
+  acquisition->SetInputData(plane);
+  acquisition->SetTextureFunction([](double s, double t, double c[4]) {
+    c[0] = c[1] = c[2] = std::fmod(std::floor(8 * s) + std::floor(8 * t), 2.0);
+  });
+  acquisition->SetModeToOptimal();
+  std::vector<double> progress;
+  vtkNew<vtkCallbackCommand> command;
+  command->SetClientData(&progress);
+  command->SetCallback([](vtkObject*, unsigned long, void* data, void* call) {
+    static_cast<std::vector<double>*>(data)->push_back(*static_cast<double*>(call));
+  });
+  acquisition->AddObserver(vtkCommand::ProgressEvent, command);
+  acquisition->Update();
+  ASSERT_GE(progress.size(), 5u);
+  EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
+  EXPECT_DOUBLE_EQ(progress.back(), 1.0);
+}
+
 // Missing or unusable inputs are errors, not crashes.
 TEST(SurfelTextureAcquisition, BadInputIsAnError)
 {
