@@ -465,53 +465,35 @@ TEST(SurfelTextureAcquisition, BadInputIsAnError)
 {
   auto plane = JitteredPlane(6, 0.1, 0.3);
   const unsigned char rgb[3] = { 1, 2, 3 };
-  {
-    vtkNew<vtkSurfelTextureAcquisition> acquisition; // no texture
-    acquisition->SetInputData(plane);
-    ErrorCounter errors(acquisition);
-    acquisition->Update();
-    EXPECT_GE(errors.Errors, 1);
-  }
-  {
-    vtkNew<vtkPolyData> bare; // no texture coordinates
-    bare->DeepCopy(plane);
-    bare->GetPointData()->SetTCoords(nullptr);
+  // The error events of one update of `input` with the image `texture` (none: no texture).
+  auto errorsOf = [](vtkPolyData* input, vtkImageData* texture) {
     vtkNew<vtkSurfelTextureAcquisition> acquisition;
-    acquisition->SetInputData(bare);
-    acquisition->SetTextureData(ConstantImage(2, 2, rgb));
+    acquisition->SetInputData(input);
+    if (texture)
+    {
+      acquisition->SetTextureData(texture);
+    }
     ErrorCounter errors(acquisition);
     acquisition->Update();
-    EXPECT_GE(errors.Errors, 1);
-  }
-  {
-    vtkNew<vtkPolyData> bare; // no normals, no tangent axes
-    bare->DeepCopy(plane);
-    bare->GetPointData()->SetNormals(nullptr);
-    vtkNew<vtkSurfelTextureAcquisition> acquisition;
-    acquisition->SetInputData(bare);
-    acquisition->SetTextureData(ConstantImage(2, 2, rgb));
-    ErrorCounter errors(acquisition);
-    acquisition->Update();
-    EXPECT_GE(errors.Errors, 1);
-  }
-  {
-    vtkNew<vtkImageData> image; // 5 components
-    image->SetDimensions(2, 2, 1);
-    image->AllocateScalars(VTK_FLOAT, 5);
-    vtkNew<vtkSurfelTextureAcquisition> acquisition;
-    acquisition->SetInputData(plane);
-    acquisition->SetTextureData(image);
-    ErrorCounter errors(acquisition);
-    acquisition->Update();
-    EXPECT_GE(errors.Errors, 1);
-  }
-  {
-    vtkNew<vtkPolyData> empty; // no points: an empty color array, no error
-    vtkNew<vtkSurfelTextureAcquisition> acquisition;
-    acquisition->SetInputData(empty);
-    acquisition->SetTextureData(ConstantImage(2, 2, rgb));
-    ErrorCounter errors(acquisition);
-    acquisition->Update();
-    EXPECT_EQ(errors.Errors, 0);
-  }
+    return errors.Errors;
+  };
+  EXPECT_GE(errorsOf(plane, nullptr), 1); // no texture
+
+  vtkNew<vtkPolyData> noTCoords;
+  noTCoords->DeepCopy(plane);
+  noTCoords->GetPointData()->SetTCoords(nullptr);
+  EXPECT_GE(errorsOf(noTCoords, ConstantImage(2, 2, rgb)), 1);
+
+  vtkNew<vtkPolyData> noNormals; // and no tangent axes
+  noNormals->DeepCopy(plane);
+  noNormals->GetPointData()->SetNormals(nullptr);
+  EXPECT_GE(errorsOf(noNormals, ConstantImage(2, 2, rgb)), 1);
+
+  vtkNew<vtkImageData> fiveComponents;
+  fiveComponents->SetDimensions(2, 2, 1);
+  fiveComponents->AllocateScalars(VTK_FLOAT, 5);
+  EXPECT_GE(errorsOf(plane, fiveComponents), 1);
+
+  vtkNew<vtkPolyData> empty; // no points: an empty output, no error
+  EXPECT_EQ(errorsOf(empty, ConstantImage(2, 2, rgb)), 0);
 }
