@@ -26,6 +26,7 @@
 #include "SplatExampleUtilities.h"
 #include "SplatReportCases.h"
 #include "SplatReportImages.h"
+#include "SplatReportDifferentialPoints.h"
 #include "SplatReportOutput.h"
 #include "SplatReportTexture.h"
 #include "SplatVdbScenes.h"
@@ -102,7 +103,9 @@ variance), offscreen, and measures each image against a reference:
   textured-plane  the checkerboard as a texture acquired onto jittered surfels (at most 250 000)
                 by vtkSurfelTextureAcquisition's three modes, checks 4 and 0.6 spacings wide;
                 the analytic reference; acquisition time per surfel (SplatReportTexture.h)
-  bunny         the Stanford bunny; reference: the mesh (vtkPolyDataMapper) at 4x4 supersampling
+  bunny         the Stanford bunny; reference: the mesh (vtkPolyDataMapper) at 4x4 supersampling;
+                then differential points against surfels on it (SplatReportDifferentialPoints.h,
+                differential-points.csv and .png)
   mri           the MRI head ch2.nii.gz (Debian's mricron-data; skipped when absent), shrunk by
                 --mri-shrink (vtkImageShrink3D, block means), in TestVolumeSplatCrossRenderer's
                 transfer functions and camera
@@ -662,7 +665,13 @@ int Run(const Options& options)
          << "against the same large image filtered like EWA's screen filter (a Gaussian of "
          << "variance 1 - 1/12 pixels^2, then the 4x4 box: unit variance in all, "
          << "`bunny-reference-gaussian.png`).\n\n"
-         << MarkdownTable(sceneRows, "Gaussian-filtered reference") << "\n";
+         << MarkdownTable(sceneRows, "Gaussian-filtered reference") << "\n"
+         << MeasureDifferentialPoints(window, renderer, mesh, references[1], color, options,
+              [&]() {
+                std::vector<double> ms;
+                TimeFrames(window, options, ms, nullptr);
+                return splatexample::Median(ms);
+              });
     }
     else
     {
