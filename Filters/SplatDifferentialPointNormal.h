@@ -37,12 +37,16 @@ inline Real DifferentialNormalScale(Real curvatureU, Real curvatureV, Real u, Re
   {
     return Real(1);
   }
-  const Real x = std::abs(curvatureU * u * u + curvatureV * v * v) / std::sqrt(r2);
-  // arcsin(x) / x = 1 + x^2 / 6 + 3 x^4 / 40 + ...: the series where the quotient would cancel.
-  if (x < Real(1e-2))
+  const Real k = curvatureU * u * u + curvatureV * v * v; // x sqrt(u^2 + v^2)
+  const Real x2 = k * k / r2;
+  // arcsin(x) / x = 1 + x^2/6 + 3 x^4/40 + 5 x^6/112 + 35 x^8/1152 + ...: the series, within
+  // 5e-7 of it, where the error bound keeps most points (x^2 < 1/16: |x| < 1/4, and
+  // sqrt(2 eps - eps^2) is 0.14 at the default eps), without an arcsin or a square root.
+  if (x2 < Real(0.0625))
   {
-    return Real(1) + x * x / Real(6);
+    return Real(1) + x2 * (Real(1) / Real(6) + x2 * (Real(3) / Real(40) + x2 * Real(5) / Real(112)));
   }
+  const Real x = std::sqrt(x2);
   return std::asin(std::min(x, Real(1))) / x;
 }
 

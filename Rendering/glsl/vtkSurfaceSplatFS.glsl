@@ -81,11 +81,13 @@ float differentialNormalScale(vec2 curvature, vec2 uv)
   {
     return 1.0;
   }
-  float x = abs(curvature.x * uv.x * uv.x + curvature.y * uv.y * uv.y) / sqrt(r2);
-  if (x < 1e-2)
+  float k = curvature.x * uv.x * uv.x + curvature.y * uv.y * uv.y;
+  float x2 = k * k / r2;
+  if (x2 < 0.0625)
   {
-    return 1.0 + x * x / 6.0;
+    return 1.0 + x2 * (1.0 / 6.0 + x2 * (3.0 / 40.0 + x2 * 5.0 / 112.0));
   }
+  float x = sqrt(x2);
   return asin(min(x, 1.0)) / x;
 }
 
