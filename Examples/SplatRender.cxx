@@ -466,8 +466,9 @@ int RenderDemoScenes(const Options& given)
   if (vtkSmartPointer<vtkImageData> head = splatexample::MriHead(1))
   {
     std::cout << "mri: " << splatexample::MriFile() << ", vtkVolumeSplatMapper" << std::endl;
-    RenderVolumeScene(window, head, splatexample::MriProperty(), options, folder + "/mri.png",
-      [&head](vtkRenderer* renderer) { splatexample::PlaceMriCamera(renderer, head); });
+    RenderVolumeScene(window, head, splatexample::MriFaceProperty(), options,
+      folder + "/mri.png",
+      [&head](vtkRenderer* renderer) { splatexample::PlaceMriFaceCamera(renderer, head); });
     ++images;
   }
   else

@@ -234,6 +234,51 @@ inline vtkSmartPointer<vtkVolumeProperty> MriProperty()
   return property;
 }
 
+/// The demo's transfer functions: the skin opaque and skin-colored, air transparent, for a
+/// shaded view of the face.
+inline vtkSmartPointer<vtkVolumeProperty> MriFaceProperty()
+{
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 0.0);
+  opacity->AddPoint(30.0, 0.0);
+  opacity->AddPoint(50.0, 0.3);
+  opacity->AddPoint(255.0, 0.5);
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(0.0, 0.0, 0.0, 0.0);
+  color->AddRGBPoint(40.0, 0.9, 0.65, 0.5);
+  color->AddRGBPoint(120.0, 1.0, 0.85, 0.75);
+  color->AddRGBPoint(255.0, 1.0, 1.0, 1.0);
+  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
+  property->SetScalarOpacity(opacity);
+  property->SetColor(color);
+  property->SetScalarOpacityUnitDistance(1.0);
+  property->SetInterpolationTypeToLinear();
+  property->SetAmbient(0.3);
+  property->SetDiffuse(0.7);
+  property->SetSpecular(0.2);
+  property->ShadeOn();
+  return property;
+}
+
+/// The demo's camera: the face from the front and a little to the side (the image's +y is
+/// anterior, +z superior).
+inline void PlaceMriFaceCamera(vtkRenderer* renderer, vtkImageData* head)
+{
+  double bounds[6];
+  head->GetBounds(bounds);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(0.0, 1.0, 0.0);
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  camera->SetViewUp(0.0, 0.0, 1.0);
+  camera->SetViewAngle(30.0);
+  camera->ParallelProjectionOff();
+  renderer->ResetCamera(bounds);
+  camera->Azimuth(30.0);
+  camera->Elevation(10.0);
+  camera->OrthogonalizeViewUp();
+  FitClippingRange(renderer, bounds);
+}
+
 /// TestVolumeSplatCrossRenderer's camera (from below and the side), framing the image's bounds
 /// (not a mapper's: the same view for every mapper).
 inline void PlaceMriCamera(vtkRenderer* renderer, vtkImageData* head)
