@@ -31,6 +31,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace splat
@@ -70,7 +71,12 @@ inline glm::dmat3 SymmetricFromComponents(const T* c)
  */
 inline glm::dmat3 CovarianceFromScaleRotation(const glm::dvec3& scale, const glm::dvec4& wxyz)
 {
-  const glm::dvec4 q = wxyz / glm::length(wxyz);
+  // Divided by its largest component first, so that the length of a quaternion of huge or tiny
+  // norm (1e200, 1e-200) neither overflows nor underflows.
+  const double largest = std::max(
+    std::max(std::abs(wxyz[0]), std::abs(wxyz[1])), std::max(std::abs(wxyz[2]), std::abs(wxyz[3])));
+  const glm::dvec4 u = wxyz / largest;
+  const glm::dvec4 q = u / glm::length(u);
   const double w = q[0], x = q[1], y = q[2], z = q[3];
   // Columns of the rotation matrix.
   const glm::dmat3 R(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y),

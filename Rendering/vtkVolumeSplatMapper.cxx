@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -475,6 +476,15 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
   glm::dvec3 origin;
   image->TransformIndexToPhysicalPoint(extent[0], extent[2], extent[4], &origin.x);
   const double voxelVolume = std::abs(glm::determinant(indexToModel));
+  if (!(voxelVolume > 0.0) || !std::isfinite(voxelVolume))
+  {
+    vtkErrorMacro("The image's voxels have no volume: spacing ("
+      << spacing[0] << ", " << spacing[1] << ", " << spacing[2]
+      << ") and direction matrix give a singular or non-finite index-to-world transform "
+         "(determinant "
+      << voxelVolume << "); nothing is drawn.");
+    return false;
+  }
   const bool shaded = property->GetShade(0) != 0;
   const glm::dmat3 gradientToModel = glm::transpose(glm::inverse(indexToModel));
 
@@ -661,12 +671,16 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
       glm::dvec4 q;
       scales->GetTuple(i, &s.x);
       rotations->GetTuple(i, &q.x);
-      valid = valid && IsFinite(&s.x, 3) && IsFinite(&q.x, 4) && glm::length(q) > 0.0 &&
-        std::isfinite(glm::length(q));
+      // Any nonzero finite quaternion is a rotation (CovarianceFromScaleRotation scales it
+      // before normalizing); scales whose squares overflow give a non-finite covariance.
+      const double largest =
+        std::max({ std::abs(q.x), std::abs(q.y), std::abs(q.z), std::abs(q.w) });
+      valid = valid && IsFinite(&s.x, 3) && IsFinite(&q.x, 4) && largest > 0.0;
       if (valid)
       {
         V = splat::CovarianceFromScaleRotation(s, q);
         mass = splat::TwoPiToThreeHalves * std::abs(s.x * s.y * s.z);
+        valid = IsFinite(&V[0][0], 9) && std::isfinite(mass);
       }
     }
     const double scalar = scalars ? scalars->GetComponent(i, 0) : 0.0;
@@ -686,6 +700,7 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
       const double volume = sampleVolumes ? sampleVolumes->GetComponent(i, 0) : mass;
       valid = valid && std::isfinite(volume) && volume >= 0.0;
       strength = tables->Extinction[entry] * volume;
+      valid = valid && std::isfinite(strength);
     }
     double rgb[4] = { 1.0, 1.0, 1.0, 1.0 };
     if (harmonics)
@@ -833,7 +848,9 @@ double* vtkVolumeSplatMapper::GetBounds()
   {
     image->GetBounds(bounds);
     const double* spacing = image->GetSpacing();
-    const double largest = std::max({ spacing[0], spacing[1], spacing[2] });
+    // Negative spacings mirror the grid: their magnitude is the voxel's extent.
+    const double largest =
+      std::max({ std::abs(spacing[0]), std::abs(spacing[1]), std::abs(spacing[2]) });
     sigma = glm::dvec3(splat::VoxelKernelSigma * largest);
   }
   else if (auto* points = vtkPointSet::SafeDownCast(input))
@@ -858,6 +875,18 @@ double* vtkVolumeSplatMapper::GetBounds()
       {
         const double* range = scales->GetFiniteRange(c);
         largest = std::max({ largest, std::abs(range[0]), std::abs(range[1]) });
+      }
+      // Scales whose squares overflow make their kernels invalid (skipped): they must not
+      // stretch the bounds, and with them the camera's clipping range, over the valid ones.
+      const double limit = std::sqrt(std::numeric_limits<double>::max());
+      if (largest >= limit)
+      {
+        largest = 0.0;
+        for (vtkIdType i = 0; i < scales->GetNumberOfValues(); ++i)
+        {
+          const double s = std::abs(scales->GetComponent(i / 3, static_cast<int>(i % 3)));
+          largest = s < limit ? std::max(largest, s) : largest;
+        }
       }
       sigma = glm::dvec3(largest);
     }
