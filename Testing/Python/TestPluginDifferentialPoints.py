@@ -18,6 +18,8 @@ import os
 import sys
 import tempfile
 
+import numpy
+
 from splat_checks import check, info_value, load_plugin, run_tests
 from splat_images import image_array, splat_mapper, test_view
 
@@ -84,10 +86,6 @@ def test_display(simple, points, kept):
     """The simplified points drawn by the Surface Splats representation as differential points,
     both footprints: the mapper takes every point and the sphere's disk has no hole."""
     view = test_view(simple)
-    view.CameraPosition = [0.0, 0.0, 12.0]
-    view.CameraFocalPoint = [0.0, 0.0, 0.0]
-    view.CameraViewUp = [0.0, 1.0, 0.0]
-    view.CameraViewAngle = 30.0
     display = simple.Show(points, view, Representation="Surface Splats")
     display.SurfaceSplatPrimitive = "Differential Points"
     mapper = splat_mapper(display, "SurfaceSplatPrimitive")
@@ -105,10 +103,19 @@ def test_display(simple, points, kept):
             path = os.path.join(folder, "differential-points.png")
             simple.SaveScreenshot(path, view, ImageResolution=[300, 300])
             pixels = image_array(path)
-        # The sphere of radius 2 at distance 12 under 30 degrees spans about 2 * 300 *
-        # 2 / (12 tan 15 deg) / 2 = 187 pixels: the central 120 x 120 lie well inside.
-        inner = pixels[90:210, 90:210]
-        holes = int((abs(inner - background).sum(axis=2) < 3.0).sum())
+        # The sphere's disk: its covered pixels' bounding box gives the center and radius; no
+        # pixel within 0.9 of the radius may show the background.
+        covered = abs(pixels - background).sum(axis=2) >= 3.0
+        rows, columns = numpy.nonzero(covered)
+        if not check(len(rows) > 0, "%s: the sphere is drawn" % filter_mode):
+            continue
+        center_row = (rows.min() + rows.max()) / 2
+        center_column = (columns.min() + columns.max()) / 2
+        radius = (columns.max() - columns.min()) / 2
+        y, x = numpy.indices(covered.shape)
+        inside = (y - center_row) ** 2 + (x - center_column) ** 2 < (0.9 * radius) ** 2
+        holes = int((inside & ~covered).sum())
+        check(radius > 50, "%s: the sphere is %d pixels wide" % (filter_mode, 2 * radius))
         check(holes == 0, "%s: no background pixel inside the sphere (%d)" % (filter_mode, holes))
     simple.Delete(display)
     simple.Delete(view)
