@@ -28,6 +28,7 @@
 #include "SplatReportImages.h"
 #include "SplatReportDifferentialPoints.h"
 #include "SplatReportOutput.h"
+#include "SplatReportStability.h"
 #include "SplatReportTexture.h"
 #include "SplatVdbScenes.h"
 #include "SplatVolumeReference.h"
@@ -113,6 +114,10 @@ variance), offscreen, and measures each image against a reference:
   vdb           a cloud of --voxels active voxels of OpenVDB fog on a rotated, non-uniformly
                 scaled grid (SplatVdbScenes.h), written as cloud.vdb into the output folder and
                 read by vtkOpenVDBReader: its kernels, and its dense copy for the ray casters
+  stability     the stiff and extreme cases of Testing/Cxx/SplatStabilityCases.h with both
+                mappers on each backend: NaN/Inf values, skipped kernels and why, errors,
+                ms per frame against the scene without the extreme, RMSE against a reference
+                where one exists; stability.csv, stability.md (SplatReportStability.h)
 The volume scenes (--volume-size pixels square, black background) are drawn by
 vtkVolumeSplatMapper in every ordering mode (blended is the default), with cutoffs 2 and 8 (the
 default 4.5 aside), and by vtkFixedPointVolumeRayCastMapper (a sample every voxel spacing and
@@ -134,8 +139,8 @@ absolute difference) for every case. Prints the tables.
 
 Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separated):
   --output-dir DIR   output folder (default $SPLAT_OUTPUT_DIR/report, else output/report)
-  --scenes LIST      checkerboard, textured-plane, bunny, mri, gaussians, vdb (default all;
-                     bunny and mri are skipped when absent)
+  --scenes LIST      checkerboard, textured-plane, bunny, mri, gaussians, vdb, stability
+                     (default all; bunny and mri are skipped when absent)
   --backends LIST    the splat mappers' backends: cpu, opengl (default: both for the surface
                      scenes, cpu for the volume scenes; a list given here applies to both;
                      under a software OpenGL renderer such as llvmpipe the OpenGL rows are slow)
@@ -183,7 +188,8 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--scenes",
       [&](const std::string& name, const std::string& value) {
         options.Scenes = splatexample::SplitList(
-          name, value, { "checkerboard", "textured-plane", "bunny", "mri", "gaussians", "vdb" });
+          name, value, { "checkerboard", "textured-plane", "bunny", "mri", "gaussians", "vdb",
+                         "stability" });
       } },
     { "--backends",
       [&](const std::string& name, const std::string& value) {
@@ -610,6 +616,10 @@ int Run(const Options& options)
   {
     md << MeasureTexturedPlane(window, renderer, options);
   }
+  if (wants("stability"))
+  {
+    md << MeasureStability(options);
+  }
 
   if (wants("bunny"))
   {
@@ -792,7 +802,7 @@ int Run(const Options& options)
        << "direction matrix).\n\n"
        << MarkdownTable(result.Rows, "Gaussian-filtered reference") << "\n";
   }
-  if (rows.empty() && !wants("textured-plane"))
+  if (rows.empty() && !wants("textured-plane") && !wants("stability"))
   {
     throw std::runtime_error("no scene was measured");
   }
@@ -821,7 +831,7 @@ int Run(const Options& options)
       throw std::runtime_error("cannot write '" + mdPath + "'");
     }
   }
-  if (!scenes.empty()) // the textured-plane scene has its own table and CSV only
+  if (!scenes.empty()) // textured-plane and stability have their own tables and CSVs only
   {
     WritePlot(scenes, rows, pngPath);
   }

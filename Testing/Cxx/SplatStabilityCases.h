@@ -86,67 +86,61 @@ inline vtkIdType CountNonFinite(vtkTextureObject* texture, vtkRenderWindow* wind
   return count;
 }
 
-/// vtkSurfaceSplatMapper with a look at its backends' last results.
-class SurfaceProbe : public vtkSurfaceSplatMapper
+/// The CPU backends' float results: the surface rasterizer's depths (its colors are bytes), the
+/// volume rasterizer's RGBA image.
+inline const std::vector<float>& FloatResult(vtkSurfaceSplatRasterizer* rasterizer)
 {
-public:
-  static SurfaceProbe* New()
-  {
-    auto* probe = new SurfaceProbe;
-    probe->InitializeObjectBase();
-    return probe;
-  }
-  vtkTypeMacro(SurfaceProbe, vtkSurfaceSplatMapper);
-  vtkIdType NonFinitePixels(vtkRenderWindow* window)
-  {
-    if (this->LastBackend == vtkSplatBackend::OPENGL)
-    {
-      return CountNonFinite(this->OpenGLRasterizer->GetColorTexture(), window);
-    }
-    const std::vector<float>& depths = this->Rasterizer->GetDepths();
-    return CountNonFinite(depths.data(), depths.size());
-  }
-  std::string Why()
-  {
-    std::ostringstream why;
-    why << "invalid " << this->NumberOfSkippedPoints << "; frustum "
-        << this->GetNumberOfFrustumCulledSplats() << "; backface "
-        << this->GetNumberOfBackfaceCulledSplats() << "; negligible "
-        << this->GetNumberOfNegligibleSplats();
-    return why.str();
-  }
-};
+  return rasterizer->GetDepths();
+}
+inline const std::vector<float>& FloatResult(vtkVolumeSplatRasterizer* rasterizer)
+{
+  return rasterizer->GetImage();
+}
 
-/// vtkVolumeSplatMapper with a look at its backends' last float images.
-class VolumeProbe : public vtkVolumeSplatMapper
+/// A splat mapper (vtkSurfaceSplatMapper or vtkVolumeSplatMapper) with a look at its backends'
+/// last float results.
+template <typename Mapper>
+class Probe : public Mapper
 {
 public:
-  static VolumeProbe* New()
+  static Probe* New()
   {
-    auto* probe = new VolumeProbe;
+    auto* probe = new Probe;
     probe->InitializeObjectBase();
     return probe;
   }
-  vtkTypeMacro(VolumeProbe, vtkVolumeSplatMapper);
   vtkIdType NonFinitePixels(vtkRenderWindow* window)
   {
     if (this->LastBackend == vtkSplatBackend::OPENGL)
     {
       return CountNonFinite(this->OpenGLRasterizer->GetColorTexture(), window);
     }
-    const std::vector<float>& image = this->Rasterizer->GetImage();
-    return CountNonFinite(image.data(), image.size());
-  }
-  std::string Why()
-  {
-    std::ostringstream why;
-    why << "invalid " << this->NumberOfInvalidKernels << "; transparent "
-        << this->NumberOfTransparentKernels << "; near plane "
-        << this->GetNumberOfNearPlaneKernels() << "; frustum "
-        << this->GetNumberOfFrustumCulledKernels();
-    return why.str();
+    const std::vector<float>& values = FloatResult(this->Rasterizer.Get());
+    return CountNonFinite(values.data(), values.size());
   }
 };
+using SurfaceProbe = Probe<vtkSurfaceSplatMapper>;
+using VolumeProbe = Probe<vtkVolumeSplatMapper>;
+
+/// What the mapper left out in its last render, and why.
+inline std::string Why(vtkSurfaceSplatMapper* mapper)
+{
+  std::ostringstream why;
+  why << "invalid " << mapper->GetNumberOfSkippedPoints() << "; frustum "
+      << mapper->GetNumberOfFrustumCulledSplats() << "; backface "
+      << mapper->GetNumberOfBackfaceCulledSplats() << "; negligible "
+      << mapper->GetNumberOfNegligibleSplats();
+  return why.str();
+}
+inline std::string Why(vtkVolumeSplatMapper* mapper)
+{
+  std::ostringstream why;
+  why << "invalid " << mapper->GetNumberOfInvalidKernels() << "; transparent "
+      << mapper->GetNumberOfTransparentKernels() << "; near plane "
+      << mapper->GetNumberOfNearPlaneKernels() << "; frustum "
+      << mapper->GetNumberOfFrustumCulledKernels();
+  return why.str();
+}
 
 /// What a case renders.
 struct Scene
@@ -237,27 +231,17 @@ inline vtkSmartPointer<vtkPolyData> Gaussians(const std::vector<Gaussian>& kerne
   auto data = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> scale, rotation, opacity, color;
-  scale->SetName("Scale");
-  scale->SetNumberOfComponents(3);
-  rotation->SetName("Rotation");
-  rotation->SetNumberOfComponents(4);
-  opacity->SetName("Opacity");
-  color->SetName("Color");
-  color->SetNumberOfComponents(3);
+  splattest::KernelSetArrays<vtkDoubleArray> arrays;
   for (const Gaussian& g : kernels)
   {
     points->InsertNextPoint(g.P);
-    scale->InsertNextTuple(g.S);
-    rotation->InsertNextTuple(g.Q);
-    opacity->InsertNextValue(0.8);
-    color->InsertNextTuple3(0.9, 0.6, 0.3);
+    arrays.Scale->InsertNextTuple(g.S);
+    arrays.Rotation->InsertNextTuple(g.Q);
+    arrays.Opacity->InsertNextValue(0.8);
+    arrays.Color->InsertNextTuple3(0.9, 0.6, 0.3);
   }
   data->SetPoints(points);
-  data->GetPointData()->AddArray(scale);
-  data->GetPointData()->AddArray(rotation);
-  data->GetPointData()->AddArray(opacity);
-  data->GetPointData()->AddArray(color);
+  arrays.AddTo(data);
   return data;
 }
 
@@ -792,33 +776,22 @@ inline std::vector<Case> Cases()
           data->GetPointData()->AddArray(radius);
           return SurfaceScene(data);
         }
-        vtkNew<vtkFloatArray> scale, rotation, opacity, color;
-        scale->SetName("Scale");
-        scale->SetNumberOfComponents(3);
-        scale->SetNumberOfTuples(n);
-        rotation->SetName("Rotation");
-        rotation->SetNumberOfComponents(4);
-        rotation->SetNumberOfTuples(n);
-        opacity->SetName("Opacity");
-        opacity->SetNumberOfTuples(n);
-        color->SetName("Color");
-        color->SetNumberOfComponents(3);
-        color->SetNumberOfTuples(n);
+        splattest::KernelSetArrays<vtkFloatArray> arrays;
+        arrays.Scale->SetNumberOfTuples(n);
+        arrays.Rotation->SetNumberOfTuples(n);
+        arrays.Opacity->SetNumberOfTuples(n);
+        arrays.Color->SetNumberOfTuples(n);
         for (int c = 0; c < 4; ++c)
         {
-          rotation->FillComponent(c, c == 0 ? 1.0 : 0.0);
+          arrays.Rotation->FillComponent(c, c == 0 ? 1.0 : 0.0);
           if (c < 3)
           {
-            scale->FillComponent(c, 0.05);
-            color->FillComponent(c, 0.5);
+            arrays.Scale->FillComponent(c, 0.05);
+            arrays.Color->FillComponent(c, 0.5);
           }
         }
-        opacity->FillComponent(0, 0.01);
-        for (vtkDataArray* a : { static_cast<vtkDataArray*>(scale), static_cast<vtkDataArray*>(rotation),
-               static_cast<vtkDataArray*>(opacity), static_cast<vtkDataArray*>(color) })
-        {
-          data->GetPointData()->AddArray(a);
-        }
+        arrays.Opacity->FillComponent(0, 0.01);
+        arrays.AddTo(data);
         return KernelScene(data);
       });
   }
@@ -980,14 +953,14 @@ inline Result Run(const Case& c, int backend, int frames = 1)
     result.Backend = surface->GetLastBackend();
     result.NonFinite = surface->NonFinitePixels(window);
     result.Skipped = surface->GetNumberOfSkippedPoints();
-    result.Why = surface->Why();
+    result.Why = Why(surface);
   }
   else
   {
     result.Backend = volume->GetLastBackend();
     result.NonFinite = volume->NonFinitePixels(window);
     result.Skipped = volume->GetNumberOfInvalidKernels();
-    result.Why = volume->Why();
+    result.Why = Why(volume);
   }
   result.Error = observer->GetError();
   result.Warning = observer->GetWarning();

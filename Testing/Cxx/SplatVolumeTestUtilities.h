@@ -40,6 +40,35 @@ inline vtkVolume* AddVolume(
 }
 
 /**
+ * The arrays of a kernel set in the 3D Gaussian Splatting convention, under
+ * vtkVolumeSplatMapper's default names, empty: Scale (3 components), Rotation (4, w x y z),
+ * Opacity (1) and Color (3). AddTo() puts them on a point set's point data.
+ */
+template <typename ArrayType>
+struct KernelSetArrays
+{
+  vtkNew<ArrayType> Scale, Rotation, Opacity, Color;
+  KernelSetArrays()
+  {
+    this->Scale->SetName("Scale");
+    this->Scale->SetNumberOfComponents(3);
+    this->Rotation->SetName("Rotation");
+    this->Rotation->SetNumberOfComponents(4);
+    this->Opacity->SetName("Opacity");
+    this->Color->SetName("Color");
+    this->Color->SetNumberOfComponents(3);
+  }
+  void AddTo(vtkDataSet* data)
+  {
+    for (ArrayType* array : { this->Scale.Get(), this->Rotation.Get(), this->Opacity.Get(),
+           this->Color.Get() })
+    {
+      data->GetPointData()->AddArray(array);
+    }
+  }
+};
+
+/**
  * An opaque, unlit green square over [x0, x1] x [-1, 1] in the plane at height z, to hide or
  * show the volume in front of or behind it.
  */

@@ -76,14 +76,12 @@ vtkSmartPointer<vtkPolyData> Kernels(const std::vector<Gaussian>& g, bool harmon
 {
   auto data = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
-  vtkNew<vtkFloatArray> scale, rotation, opacity, color, sh;
-  scale->SetName("Scale");
-  scale->SetNumberOfComponents(3);
-  rotation->SetName("Rotation");
-  rotation->SetNumberOfComponents(4);
-  opacity->SetName("Opacity");
-  color->SetName("Color");
-  color->SetNumberOfComponents(3);
+  splattest::KernelSetArrays<vtkFloatArray> arrays;
+  vtkFloatArray* scale = arrays.Scale;
+  vtkFloatArray* rotation = arrays.Rotation;
+  vtkFloatArray* opacity = arrays.Opacity;
+  vtkFloatArray* color = arrays.Color;
+  vtkNew<vtkFloatArray> sh;
   sh->SetName("SphericalHarmonics");
   sh->SetNumberOfComponents(12);
   for (const Gaussian& k : g)
@@ -109,10 +107,7 @@ vtkSmartPointer<vtkPolyData> Kernels(const std::vector<Gaussian>& g, bool harmon
     sh->InsertNextTuple(coefficients);
   }
   data->SetPoints(points);
-  for (vtkFloatArray* array : { scale.Get(), rotation.Get(), opacity.Get(), color.Get() })
-  {
-    data->GetPointData()->AddArray(array);
-  }
+  arrays.AddTo(data);
   if (harmonics)
   {
     data->GetPointData()->AddArray(sh);

@@ -127,22 +127,15 @@ int main(int, char*[])
   const double inf = std::numeric_limits<double>::infinity();
   vtkNew<vtkPolyData> bad;
   vtkNew<vtkPoints> points;
-  vtkNew<vtkDoubleArray> scale, rotation, opacity, color;
-  scale->SetName("Scale");
-  scale->SetNumberOfComponents(3);
-  rotation->SetName("Rotation");
-  rotation->SetNumberOfComponents(4);
-  opacity->SetName("Opacity");
-  color->SetName("Color");
-  color->SetNumberOfComponents(3);
+  splattest::KernelSetArrays<vtkDoubleArray> arrays;
   auto add = [&](double x, double y, double z, double s0, double s1, double s2, double qw,
                double qx, double o)
   {
     points->InsertNextPoint(x, y, z);
-    scale->InsertNextTuple3(s0, s1, s2);
-    rotation->InsertNextTuple4(qw, qx, 0.0, 0.0);
-    opacity->InsertNextValue(o);
-    color->InsertNextTuple3(1.0, 0.5, 0.2);
+    arrays.Scale->InsertNextTuple3(s0, s1, s2);
+    arrays.Rotation->InsertNextTuple4(qw, qx, 0.0, 0.0);
+    arrays.Opacity->InsertNextValue(o);
+    arrays.Color->InsertNextTuple3(1.0, 0.5, 0.2);
   };
   add(nan, 0, 0, 0.1, 0.1, 0.1, 1, 0, 0.5);        // invalid: position
   add(0, inf, 0, 0.1, 0.1, 0.1, 1, 0, 0.5);        // invalid: position
@@ -157,10 +150,7 @@ int main(int, char*[])
   add(0, 0, 4.9, 0.3, 0.3, 0.3, 1, 0, 0.8);        // crossing the near plane
   add(0, -0.2, 0, 0.1, 0.2, 0.1, 1, 0, 0.8);       // valid
   bad->SetPoints(points);
-  bad->GetPointData()->AddArray(scale);
-  bad->GetPointData()->AddArray(rotation);
-  bad->GetPointData()->AddArray(opacity);
-  bad->GetPointData()->AddArray(color);
+  arrays.AddTo(bad);
   vtkNew<vtkVolumeSplatMapper> mapper;
   mapper->SetInputData(bad);
   vtkNew<vtkRenderer> renderer;
