@@ -234,8 +234,8 @@ inline vtkSmartPointer<vtkVolumeProperty> MriProperty()
   return property;
 }
 
-/// The demo's transfer functions: the skin opaque and skin-colored, air transparent, for a
-/// shaded view of the face.
+/// The demo's transfer functions, otherwise MriProperty's: the skin opaque and skin-colored, air
+/// transparent, for a shaded view of the face.
 inline vtkSmartPointer<vtkVolumeProperty> MriFaceProperty()
 {
   vtkNew<vtkPiecewiseFunction> opacity;
@@ -248,11 +248,9 @@ inline vtkSmartPointer<vtkVolumeProperty> MriFaceProperty()
   color->AddRGBPoint(40.0, 0.9, 0.65, 0.5);
   color->AddRGBPoint(120.0, 1.0, 0.85, 0.75);
   color->AddRGBPoint(255.0, 1.0, 1.0, 1.0);
-  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
+  vtkSmartPointer<vtkVolumeProperty> property = MriProperty();
   property->SetScalarOpacity(opacity);
   property->SetColor(color);
-  property->SetScalarOpacityUnitDistance(1.0);
-  property->SetInterpolationTypeToLinear();
   property->SetAmbient(0.3);
   property->SetDiffuse(0.7);
   property->SetSpecular(0.2);
