@@ -11,7 +11,7 @@
 #define SplatReportStability_h
 
 #include "SplatReportCases.h"
-#include "SplatStabilityCases.h"
+#include "SplatStabilityRun.h"
 
 #include "vtkImageImport.h"
 #include "vtkPNGWriter.h"

@@ -4,7 +4,7 @@
 // Every case of the group must render without a NaN or Inf value in the mapper's float image,
 // count what it skipped (with a warning), refuse bad input with an error where the case says so,
 // and draw something where the scene is visible. Prints one line per case.
-#include "SplatStabilityCases.h"
+#include "SplatStabilityRun.h"
 
 #include <cstdio>
 #include <cstring>
