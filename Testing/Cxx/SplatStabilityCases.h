@@ -612,6 +612,17 @@ inline std::vector<Case> Cases()
         s.Height = 4096;
         return s;
       });
+    // 8192x8192 (gigabytes of buffers): only with SPLAT_STABILITY_LARGE=1 (the report's figures).
+    if (std::getenv("SPLAT_STABILITY_LARGE"))
+    {
+      add("window", kind, "8192x8192",
+        [base]
+        {
+          Scene s = base();
+          s.Width = s.Height = 8192;
+          return s;
+        });
+    }
     add("input", kind, "empty",
       [kind]
       {
