@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 vtkStandardNewMacro(vtkSurfaceSplatRasterizer);
 
@@ -18,11 +19,27 @@ enum CullReason
   Kept = 0,
   OutsideFrustum,
   BackFacing,
-  Negligible
+  Negligible,
+  Minified // kept, accumulated per pixel
 };
 
 // Rows per band: small enough to balance the threads, large enough that few kernels straddle bands.
 constexpr int BandHeight = 16;
+
+// Accumulated alpha beyond which the fragments behind change no 8-bit color.
+constexpr float OpaqueAlpha = 1.0f - 1e-4f;
+
+// Surfels per setup chunk: the minified splats are listed chunk by chunk, so that every pixel
+// sums them in input order whatever the number of threads.
+constexpr vtkIdType ChunkSize = 16384;
+
+// The largest eigenvalue of a symmetric 2x2 matrix.
+double LargestEigenvalue(const glm::dmat2& m)
+{
+  const double mean = 0.5 * (m[0][0] + m[1][1]);
+  const double half = 0.5 * (m[0][0] - m[1][1]);
+  return mean + std::sqrt(half * half + m[0][1] * m[0][1]);
+}
 
 // The pixels a rectangle p +- a0 +- a1 covers, from its corners' exact projections; false when
 // it covers none or a corner is not in front of the eye.
@@ -122,12 +139,44 @@ struct vtkSurfaceSplatRasterizer::Fragment
   bool Shaded() const { return this->Weight < 0.0f; }
 };
 
+// A minified splat after setup: what the pixel holding its center sums. Its mass is the |J| its
+// resampling kernel integrates to (eq. 6).
+struct vtkSurfaceSplatRasterizer::MinifiedSplat
+{
+  float CenterX, CenterY;
+  // Eye depth of its tangent plane at its pixel's center, and how it changes per pixel: at
+  // grazing angles a pixel spans more depth than the z threshold.
+  float Depth;
+  float DepthSlope[2];
+  float Threshold;
+  float Mass;
+  float Normal[3];
+  float Color[3];
+  float Alpha;
+};
+
+// One surface's minified splats whose centers lie in one pixel: their weighted sums and, once
+// the pixel is complete, the weighted means of their centers relative to the pixel's center
+// and of their depth slopes.
+struct vtkSurfaceSplatRasterizer::PixelCell
+{
+  Fragment Sum;
+  float Threshold;
+  float Offset[2];
+  float DepthSlope[2];
+};
+
 struct vtkSurfaceSplatRasterizer::Internals
 {
   std::vector<ScreenSplat> Splats;
   std::vector<DifferentialSplat> DifferentialSplats; // parallel to Splats; empty for surfels
   std::vector<vtkIdType> BandOffsets; // per band, into BandSplats
   std::vector<vtkIdType> BandSplats;  // splat indices, band by band, in input order
+  // Minified splats of chunk c whose center lies in cell band b: MinifiedSplats[c * bands + b].
+  std::vector<std::vector<MinifiedSplat>> MinifiedSplats;
+  // Per pixel of the viewport padded by the gather's reach, its cells, front to back.
+  std::vector<PixelCell> Cells;
+  std::vector<std::uint8_t> CellCounts;
 };
 
 namespace
@@ -135,6 +184,8 @@ namespace
 using Fragment = vtkSurfaceSplatRasterizer::Fragment;
 using ScreenSplat = vtkSurfaceSplatRasterizer::ScreenSplat;
 using DifferentialSplat = vtkSurfaceSplatRasterizer::DifferentialSplat;
+using MinifiedSplat = vtkSurfaceSplatRasterizer::MinifiedSplat;
+using PixelCell = vtkSurfaceSplatRasterizer::PixelCell;
 
 // A differential point's per-pixel terms, in eye space: p its center, a0 and a1 its axes (the
 // principal directions scaled by the half-widths extentU, extentV in model units), curvatures
@@ -173,60 +224,149 @@ void SetUpDifferentialSplat(const splat::PixelRays& rays, const glm::dvec3& p,
 }
 
 // Contributions carry their own normal: a differential point's varies from pixel to pixel.
-inline void Accumulate(Fragment& f, float z, float w, const float* normal, const ScreenSplat& s)
+inline void Accumulate(
+  Fragment& f, float z, float w, const float* normal, const float* color, float alpha)
 {
   f.Depth = std::min(f.Depth, z);
   f.Weight += w;
-  f.Alpha += w * s.Alpha;
-  f.Color[0] += w * s.Color[0];
-  f.Color[1] += w * s.Color[1];
-  f.Color[2] += w * s.Color[2];
+  f.Alpha += w * alpha;
+  f.Color[0] += w * color[0];
+  f.Color[1] += w * color[1];
+  f.Color[2] += w * color[2];
   f.Normal[0] += w * normal[0];
   f.Normal[1] += w * normal[1];
   f.Normal[2] += w * normal[2];
 }
 
-Fragment NewFragment(float z, float w, const float* normal, const ScreenSplat& s)
+Fragment NewFragment(float z, float w, const float* normal, const float* color, float alpha)
 {
   Fragment f;
   f.Depth = z;
   f.Weight = w;
-  f.Alpha = w * s.Alpha;
+  f.Alpha = w * alpha;
   for (int c = 0; c < 3; ++c)
   {
-    f.Color[c] = w * s.Color[c];
+    f.Color[c] = w * color[c];
     f.Normal[c] = w * normal[c];
   }
   return f;
 }
 
-// An opaque contribution to a pixel's fragments, sorted front to back: it joins the surface
-// within its z threshold, or becomes a new surface; what falls behind the last of `layers`
-// fragments is hidden and dropped.
-inline void AddOpaque(Fragment* fragments, std::uint8_t& count, int layers, float z, float w,
-  const float* normal, const ScreenSplat& s)
+// Sums of contributions at depth z, each weighted w times as much.
+inline void AccumulateScaled(Fragment& f, const Fragment& sums, float w, float z)
+{
+  f.Depth = std::min(f.Depth, z);
+  f.Weight += w * sums.Weight;
+  f.Alpha += w * sums.Alpha;
+  for (int c = 0; c < 3; ++c)
+  {
+    f.Color[c] += w * sums.Color[c];
+    f.Normal[c] += w * sums.Normal[c];
+  }
+}
+
+inline Fragment Scaled(const Fragment& sums, float w, float z)
+{
+  Fragment f = sums;
+  f.Depth = z;
+  f.Weight *= w;
+  f.Alpha *= w;
+  for (int c = 0; c < 3; ++c)
+  {
+    f.Color[c] *= w;
+    f.Normal[c] *= w;
+  }
+  return f;
+}
+
+inline float DepthOf(const Fragment& f)
+{
+  return f.Depth;
+}
+
+inline float DepthOf(const PixelCell& c)
+{
+  return c.Sum.Depth;
+}
+
+// Where an opaque contribution at eye depth z goes among a pixel's `count` items (fragments or
+// cells), sorted front to back: the index of the surface within the z threshold, or, with
+// `inserted` set, of a new surface shifted into place for the caller to fill; -1 when it falls
+// behind the last of `layers` items and is hidden.
+template <typename Item>
+inline int OpaqueSlot(
+  Item* items, std::uint8_t& count, int layers, float z, float threshold, bool& inserted)
 {
   int i = 0;
-  while (i < count && z > fragments[i].Depth + s.Threshold)
+  while (i < count && z > DepthOf(items[i]) + threshold)
   {
     ++i;
   }
-  if (i < count && z >= fragments[i].Depth - s.Threshold)
+  inserted = !(i < count && z >= DepthOf(items[i]) - threshold);
+  if (!inserted)
   {
-    Accumulate(fragments[i], z, w, normal, s);
-    return;
+    return i;
   }
   if (i == layers)
   {
-    return;
+    return -1;
   }
   const int kept = std::min<int>(count, layers - 1);
   for (int j = kept; j > i; --j)
   {
-    fragments[j] = fragments[j - 1];
+    items[j] = items[j - 1];
   }
-  fragments[i] = NewFragment(z, w, normal, s);
   count = static_cast<std::uint8_t>(kept + 1);
+  return i;
+}
+
+// An opaque contribution to a pixel's fragments: it joins the surface within its z threshold,
+// or becomes a new surface; what falls behind the last of `layers` fragments is dropped.
+inline void AddOpaque(Fragment* fragments, std::uint8_t& count, int layers, float z, float w,
+  const float* normal, const ScreenSplat& s)
+{
+  bool inserted;
+  const int i = OpaqueSlot(fragments, count, layers, z, s.Threshold, inserted);
+  if (i < 0)
+  {
+    return;
+  }
+  if (inserted)
+  {
+    fragments[i] = NewFragment(z, w, normal, s.Color, s.Alpha);
+  }
+  else
+  {
+    Accumulate(fragments[i], z, w, normal, s.Color, s.Alpha);
+  }
+}
+
+// A minified splat into the cells of the pixel holding its center, as AddOpaque does for
+// fragments, with its offset from the pixel's center weighted by its mass.
+inline void Deposit(PixelCell* cells, std::uint8_t& count, int layers, const MinifiedSplat& m,
+  float offsetX, float offsetY)
+{
+  bool inserted;
+  const int i = OpaqueSlot(cells, count, layers, m.Depth, m.Threshold, inserted);
+  if (i < 0)
+  {
+    return;
+  }
+  PixelCell& cell = cells[i];
+  if (inserted)
+  {
+    cell.Sum = NewFragment(m.Depth, m.Mass, m.Normal, m.Color, m.Alpha);
+    cell.Threshold = m.Threshold;
+    cell.Offset[0] = cell.Offset[1] = cell.DepthSlope[0] = cell.DepthSlope[1] = 0.0f;
+  }
+  else
+  {
+    Accumulate(cell.Sum, m.Depth, m.Mass, m.Normal, m.Color, m.Alpha);
+  }
+  cell.Offset[0] += m.Mass * offsetX;
+  cell.Offset[1] += m.Mass * offsetY;
+  cell.DepthSlope[0] += m.Mass * m.DepthSlope[0];
+  cell.DepthSlope[1] += m.Mass * m.DepthSlope[1];
 }
 
 // exp(-beta) for beta in [0, cutoff], tabulated once per frame and linearly interpolated: the
@@ -347,7 +487,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   this->Layers = translucent || this->EdgeAntialiasing ? this->NumberOfLayers : 1;
   this->Fragments.resize(pixels * this->Layers);
   this->FragmentCounts.assign(pixels, 0);
-  this->SplattedCount = this->FrustumCulledCount = this->BackfaceCulledCount = 0;
+  this->SplattedCount = this->MinifiedCount = 0;
+  this->FrustumCulledCount = this->BackfaceCulledCount = 0;
   this->NegligibleCount = this->FragmentCount = 0;
 
   Frame& frame = this->CurrentFrame;
@@ -390,13 +531,32 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const float amplitudeScale = differential && !rectangles ? 2.0f : 1.0f;
   std::vector<DifferentialSplat>& differentials = this->Internal->DifferentialSplats;
   differentials.resize(differential ? surfels.Count : 0);
+  // Minified splats are summed per pixel where the exact kernel is the EWA one of an opaque
+  // surfel. A pixel gathers the cells whose mean center can lie within the cutoff's reach,
+  // sqrt(2 c) pixels, of its center: `reach` cells on each side, and as many outside the
+  // viewport.
+  const bool minify = this->MinifiedVariance > 0.0 && filter == splat::KernelFilter::EWA &&
+    !differential && !translucent;
+  const int reach = static_cast<int>(std::floor(std::sqrt(2.0 * cutoff) + 0.5));
+  const int cellWidth = width + 2 * reach;
+  const int cellHeight = height + 2 * reach;
+  const int cellBands = (cellHeight + BandHeight - 1) / BandHeight;
+  const vtkIdType chunks = (static_cast<vtkIdType>(surfels.Count) + ChunkSize - 1) / ChunkSize;
+  std::vector<std::vector<MinifiedSplat>>& minified = this->Internal->MinifiedSplats;
+  minified.resize(minify ? chunks * cellBands : 0);
 
-  // 1. Setup, in eye space.
+  // 1. Setup, in eye space, chunk by chunk.
   std::vector<ScreenSplat>& splats = this->Internal->Splats;
   splats.resize(surfels.Count);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(surfels.Count),
-    [&](vtkIdType begin, vtkIdType end)
+  vtkSMPTools::For(0, chunks, 1,
+    [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
     {
+      const vtkIdType begin = chunkBegin * ChunkSize;
+      const vtkIdType end = std::min(chunkEnd * ChunkSize, static_cast<vtkIdType>(surfels.Count));
+      for (vtkIdType c = chunkBegin * cellBands; minify && c < chunkEnd * cellBands; ++c)
+      {
+        minified[c].clear();
+      }
       for (vtkIdType i = begin; i < end; ++i)
       {
         ScreenSplat& s = splats[i];
@@ -429,6 +589,42 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         if (!(splat::Foreshortening(projection) >= splat::EdgeOnForeshortening))
         {
           s.Culled = Negligible;
+          continue;
+        }
+        const glm::dmat2& J = projection.Jacobian;
+        if (minify &&
+          LargestEigenvalue(splat::SurfelBasisVariance * (J * glm::transpose(J))) <=
+            this->MinifiedVariance)
+        {
+          const glm::dvec2 cell = glm::floor(projection.Center);
+          if (!(cell.x >= -reach && cell.x < width + reach && cell.y >= -reach &&
+                cell.y < height + reach))
+          {
+            continue;
+          }
+          MinifiedSplat m;
+          m.CenterX = static_cast<float>(projection.Center.x);
+          m.CenterY = static_cast<float>(projection.Center.y);
+          // Along the axes the eye depth changes by -(a0.z, a1.z) per axis unit, and the
+          // pixel position by J.
+          const glm::dvec2 slope = glm::dvec2(-a0.z, -a1.z) * glm::inverse(J);
+          m.Depth = static_cast<float>(-p.z + glm::dot(slope, cell + 0.5 - projection.Center));
+          m.DepthSlope[0] = static_cast<float>(slope.x);
+          m.DepthSlope[1] = static_cast<float>(slope.y);
+          m.Threshold =
+            static_cast<float>(depthThreshold * std::max(glm::length(a0), glm::length(a1)));
+          m.Mass = static_cast<float>(std::abs(glm::determinant(J)));
+          const double facing = backFacing ? -1.0 : 1.0;
+          for (int c = 0; c < 3; ++c)
+          {
+            m.Normal[c] = static_cast<float>(facing * normal[c]);
+            m.Color[c] = surfels.Colors[3 * i + c];
+          }
+          m.Alpha = 1.0f;
+          const vtkIdType chunk = i / ChunkSize;
+          const int band = (static_cast<int>(cell.y) + reach) / BandHeight;
+          minified[chunk * cellBands + band].push_back(m);
+          s.Culled = Minified;
           continue;
         }
         const splat::ResamplingKernel kernel =
@@ -492,7 +688,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<vtkIdType>& offsets = this->Internal->BandOffsets;
   std::vector<vtkIdType>& bandSplats = this->Internal->BandSplats;
   offsets.assign(bands + 1, 0);
-  vtkIdType culled[4] = { 0, 0, 0, 0 };
+  vtkIdType culled[5] = { 0, 0, 0, 0, 0 };
   for (const ScreenSplat& s : splats)
   {
     ++culled[s.Culled];
@@ -500,7 +696,6 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
     {
       continue;
     }
-    ++this->SplattedCount;
     for (int b = s.Y0 / BandHeight; b <= s.Y1 / BandHeight; ++b)
     {
       ++offsets[b + 1];
@@ -509,6 +704,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   this->FrustumCulledCount = culled[OutsideFrustum];
   this->BackfaceCulledCount = culled[BackFacing];
   this->NegligibleCount = culled[Negligible];
+  this->MinifiedCount = culled[Minified];
+  this->SplattedCount = culled[Kept] + culled[Minified];
   for (int b = 0; b < bands; ++b)
   {
     offsets[b + 1] += offsets[b];
@@ -630,6 +827,112 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   {
     this->FragmentCount += f;
   }
+  if (this->MinifiedCount == 0)
+  {
+    return;
+  }
+
+  // 3. Minified splats: each cell band sums its splats chunk by chunk, in input order, into the
+  //    cells of the pixels holding their centers, then turns the offset sums into mean centers.
+  std::vector<PixelCell>& cells = this->Internal->Cells;
+  std::vector<std::uint8_t>& cellCounts = this->Internal->CellCounts;
+  cells.resize(static_cast<std::size_t>(cellWidth) * cellHeight * layers);
+  cellCounts.resize(static_cast<std::size_t>(cellWidth) * cellHeight);
+  vtkSMPTools::For(0, cellBands, 1,
+    [&](vtkIdType bandBegin, vtkIdType bandEnd)
+    {
+      const std::size_t first = static_cast<std::size_t>(bandBegin) * BandHeight * cellWidth;
+      const std::size_t last = std::min(
+        static_cast<std::size_t>(bandEnd) * BandHeight * cellWidth, cellCounts.size());
+      std::fill(cellCounts.begin() + first, cellCounts.begin() + last, 0);
+      for (vtkIdType b = bandBegin; b < bandEnd; ++b)
+      {
+        for (vtkIdType chunk = 0; chunk < chunks; ++chunk)
+        {
+          for (const MinifiedSplat& m : minified[chunk * cellBands + b])
+          {
+            const int x = static_cast<int>(std::floor(m.CenterX));
+            const int y = static_cast<int>(std::floor(m.CenterY));
+            const std::size_t cell =
+              static_cast<std::size_t>(y + reach) * cellWidth + (x + reach);
+            Deposit(&cells[cell * layers], cellCounts[cell], layers, m, m.CenterX - (x + 0.5f),
+              m.CenterY - (y + 0.5f));
+          }
+        }
+      }
+      for (std::size_t cell = first; cell < last; ++cell)
+      {
+        for (int j = 0; j < cellCounts[cell]; ++j)
+        {
+          PixelCell& c = cells[cell * layers + j];
+          for (int k = 0; k < 2; ++k)
+          {
+            c.Offset[k] /= c.Sum.Weight;
+            c.DepthSlope[k] /= c.Sum.Weight;
+          }
+        }
+      }
+    });
+
+  // 4. Each pixel gathers its neighbors' cells through the low-pass filter, the unit Gaussian
+  //    (1 / 2 pi) e^-beta of the offset to their mean centers within the cutoff, into its own
+  //    fragments as one contribution per cell.
+  std::vector<vtkIdType> gathered(bands, 0);
+  vtkSMPTools::For(0, bands, 1,
+    [&](vtkIdType bandBegin, vtkIdType bandEnd)
+    {
+      const int rowBegin = static_cast<int>(bandBegin) * BandHeight;
+      const int rowEnd = std::min(static_cast<int>(bandEnd) * BandHeight, height);
+      vtkIdType written = 0;
+      for (int y = rowBegin; y < rowEnd; ++y)
+      {
+        for (int x = 0; x < width; ++x)
+        {
+          const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
+          Fragment* pixelFragments = &this->Fragments[pixel * layers];
+          std::uint8_t& count = this->FragmentCounts[pixel];
+          for (int dy = -reach; dy <= reach; ++dy)
+          {
+            const std::size_t row = static_cast<std::size_t>(y + dy + reach) * cellWidth;
+            for (int dx = -reach; dx <= reach; ++dx)
+            {
+              const std::size_t cell = row + (x + dx + reach);
+              for (int j = 0; j < cellCounts[cell]; ++j)
+              {
+                const PixelCell& c = cells[cell * layers + j];
+                const float ox = dx + c.Offset[0];
+                const float oy = dy + c.Offset[1];
+                const float beta = 0.5f * (ox * ox + oy * oy);
+                // The cell's plane at this pixel's center, dx, dy pixels from its own.
+                const float z = c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1];
+                if (!(beta < cutoffF) || (sceneDepths && z > sceneDepths[pixel]))
+                {
+                  continue;
+                }
+                bool inserted;
+                const int i = OpaqueSlot(pixelFragments, count, layers, z, c.Threshold, inserted);
+                if (i < 0)
+                {
+                  continue;
+                }
+                const float w = static_cast<float>(splat::InverseTwoPi) * exponential(beta);
+                if (inserted)
+                {
+                  pixelFragments[i] = Scaled(c.Sum, w, z);
+                }
+                else
+                {
+                  AccumulateScaled(pixelFragments[i], c.Sum, w, z);
+                }
+                ++written;
+              }
+            }
+          }
+        }
+      }
+      gathered[bandBegin] = written;
+    });
+  this->FragmentCount += std::accumulate(gathered.begin(), gathered.end(), vtkIdType(0));
 }
 
 //------------------------------------------------------------------------------
@@ -650,13 +953,13 @@ void vtkSurfaceSplatRasterizer::AddLayered(Fragment* fragments, std::uint8_t& co
   }
   if (nearest >= 0)
   {
-    Accumulate(fragments[nearest], z, w, normal, s);
+    Accumulate(fragments[nearest], z, w, normal, s.Color, s.Alpha);
     return;
   }
   // Fragments stay sorted front to back: insert the new one in place.
   Fragment candidates[MaximumLayers + 1];
   int n = 0;
-  const Fragment added = NewFragment(z, w, normal, s);
+  const Fragment added = NewFragment(z, w, normal, s.Color, s.Alpha);
   bool inserted = false;
   for (int i = 0; i < count; ++i)
   {
@@ -728,13 +1031,14 @@ void vtkSurfaceSplatRasterizer::Resolve()
           {
             continue;
           }
-          // Back-to-front blend of the pixel's fragments (premultiplied colors, eq. 12).
+          // Blend of the pixel's fragments (premultiplied colors, eq. 12), front to back until
+          // what lies behind can no longer show.
           const Fragment* fragments = &this->Fragments[pixel * layers];
           glm::vec4 result(0.0f);
-          for (int i = count - 1; i >= 0; --i)
+          for (int i = 0; i < count && result.a < OpaqueAlpha; ++i)
           {
             const glm::vec4 shaded = this->ShadeFragment(fragments[i], x, static_cast<int>(y));
-            result = shaded + result * (1.0f - shaded.a);
+            result += shaded * (1.0f - result.a);
           }
           std::uint8_t* rgba = &this->Colors[4 * pixel];
           for (int c = 0; c < 4; ++c)

@@ -115,6 +115,20 @@ public:
   splat::KernelFilter GetFilter() const { return this->Filter; }
 
   /**
+   * Minified splats, accumulated per pixel: an opaque EWA splat whose warped basis function
+   * (J Vr J^T of eq. 6) has no variance above this many pixels^2 is far smaller than the screen
+   * low-pass filter, so its resampling kernel is nearly the low-pass alone, centered on it. Such
+   * splats are summed into the pixel that holds their center (weights, attributes and the
+   * weighted mean of their centers, with the same z threshold as the exact path), and each
+   * pixel then gathers its neighbors' sums through the low-pass Gaussian evaluated at their
+   * mean centers: one write per splat instead of a kernel over several pixels. Default 0.25;
+   * 0 draws every splat with its exact kernel. Translucent scenes, differential points and the
+   * other filters always take the exact kernel.
+   */
+  vtkSetClampMacro(MinifiedVariance, double, 0.0, 1.0);
+  vtkGetMacro(MinifiedVariance, double);
+
+  /**
    * Leave out splats whose normal faces away from the viewer: right for closed, opaque,
    * consistently oriented surfaces only. Default off (two-sided splats).
    */
@@ -182,15 +196,19 @@ public:
   struct Fragment;
   struct ScreenSplat;
   struct DifferentialSplat;
+  struct MinifiedSplat;
+  struct PixelCell;
 
   ///@{
   /**
-   * What the last frame did: surfels splatted; surfels left out because they lie outside the
+   * What the last frame did: surfels splatted, of which minified (accumulated per pixel, see
+   * MinifiedVariance); surfels left out because they lie outside the
    * view frustum (behind the eye, outside the near/far range, footprint outside the viewport),
    * face away with BackfaceCulling on, or are edge-on (negligible weight); and pixel
    * contributions written.
    */
   vtkGetMacro(SplattedCount, vtkIdType);
+  vtkGetMacro(MinifiedCount, vtkIdType);
   vtkGetMacro(FrustumCulledCount, vtkIdType);
   vtkGetMacro(BackfaceCulledCount, vtkIdType);
   vtkGetMacro(NegligibleCount, vtkIdType);
@@ -217,7 +235,10 @@ protected:
   splat::KernelFilter Filter = splat::KernelFilter::EWA;
   bool BackfaceCulling = false;
 
+  double MinifiedVariance = 0.25;
+
   vtkIdType SplattedCount = 0;
+  vtkIdType MinifiedCount = 0;
   vtkIdType FrustumCulledCount = 0;
   vtkIdType BackfaceCulledCount = 0;
   vtkIdType NegligibleCount = 0;
