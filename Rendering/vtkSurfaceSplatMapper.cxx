@@ -175,6 +175,22 @@ double vtkSurfaceSplatMapper::GetCutoff()
 }
 
 //------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::SetMinifiedVariance(double variance)
+{
+  if (variance != this->Rasterizer->GetMinifiedVariance())
+  {
+    this->Rasterizer->SetMinifiedVariance(variance);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+double vtkSurfaceSplatMapper::GetMinifiedVariance()
+{
+  return this->Rasterizer->GetMinifiedVariance();
+}
+
+//------------------------------------------------------------------------------
 void vtkSurfaceSplatMapper::SetDepthThreshold(double threshold)
 {
   if (threshold != this->Rasterizer->GetDepthThreshold())
@@ -671,6 +687,7 @@ void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastBackend: " << vtkSplatBackend::GetBackendAsString(this->LastBackend)
      << "\n";
   os << indent << "Cutoff: " << this->Rasterizer->GetCutoff() << "\n";
+  os << indent << "MinifiedVariance: " << this->Rasterizer->GetMinifiedVariance() << "\n";
   os << indent << "DepthThreshold: " << this->Rasterizer->GetDepthThreshold() << "\n";
   os << indent << "NumberOfSplats: " << this->NumberOfSplats << "\n";
   os << indent << "NumberOfSkippedPoints: " << this->NumberOfSkippedPoints << "\n";

@@ -74,7 +74,6 @@ struct vtkSurfaceSplatRasterizer::ScreenSplat
   float Amplitude;
   float Threshold; // eye-space z threshold
   int X0, X1, Y0, Y1; // inclusive pixel bounds
-  int Culled;         // why the splat is left out, Kept when it is not
   float DepthNumerator[3];
   float DepthDenominator[3];
   float Normal[3]; // eye space, facing the viewer
@@ -169,6 +168,7 @@ struct vtkSurfaceSplatRasterizer::PixelCell
 struct vtkSurfaceSplatRasterizer::Internals
 {
   std::vector<ScreenSplat> Splats;
+  std::vector<std::uint8_t> CullReasons; // per surfel: why it is left out, or Kept, or Minified
   std::vector<DifferentialSplat> DifferentialSplats; // parallel to Splats; empty for surfels
   std::vector<vtkIdType> BandOffsets; // per band, into BandSplats
   std::vector<vtkIdType> BandSplats;  // splat indices, band by band, in input order
@@ -548,6 +548,9 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   // 1. Setup, in eye space, chunk by chunk.
   std::vector<ScreenSplat>& splats = this->Internal->Splats;
   splats.resize(surfels.Count);
+  std::vector<std::uint8_t>& reasons = this->Internal->CullReasons;
+  reasons.resize(surfels.Count);
+  const glm::dmat3 axisToEye(modelToEye);
   vtkSMPTools::For(0, chunks, 1,
     [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
     {
@@ -559,8 +562,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
       }
       for (vtkIdType i = begin; i < end; ++i)
       {
-        ScreenSplat& s = splats[i];
-        s.Culled = OutsideFrustum;
+        std::uint8_t& reason = reasons[i];
+        reason = OutsideFrustum;
         const double* position = surfels.Positions + 3 * i;
         const float* n = surfels.Normals + 3 * i;
         const float* axis0 = surfels.Axes0 + 3 * i;
@@ -570,8 +573,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         {
           continue;
         }
-        const glm::dvec3 a0(modelToEye * glm::dvec4(axis0[0], axis0[1], axis0[2], 0.0));
-        const glm::dvec3 a1(modelToEye * glm::dvec4(axis1[0], axis1[1], axis1[2], 0.0));
+        const glm::dvec3 a0 = axisToEye * glm::dvec3(axis0[0], axis0[1], axis0[2]);
+        const glm::dvec3 a1 = axisToEye * glm::dvec3(axis1[0], axis1[1], axis1[2]);
         splat::SurfelProjection projection;
         if (!splat::ProjectSurfel(
               eyeToClip, viewport, p, footprintScale * a0, footprintScale * a1, projection))
@@ -583,12 +586,12 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         const bool backFacing = glm::dot(normal, view) > 0.0;
         if (backFacing && cullBackFaces)
         {
-          s.Culled = BackFacing;
+          reason = BackFacing;
           continue;
         }
         if (!(splat::Foreshortening(projection) >= splat::EdgeOnForeshortening))
         {
-          s.Culled = Negligible;
+          reason = Negligible;
           continue;
         }
         const glm::dmat2& J = projection.Jacobian;
@@ -607,13 +610,15 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           m.CenterY = static_cast<float>(projection.Center.y);
           // Along the axes the eye depth changes by -(a0.z, a1.z) per axis unit, and the
           // pixel position by J.
-          const glm::dvec2 slope = glm::dvec2(-a0.z, -a1.z) * glm::inverse(J);
+          const double det = glm::determinant(J);
+          const glm::dvec2 slope =
+            glm::dvec2(a1.z * J[0][1] - a0.z * J[1][1], a0.z * J[1][0] - a1.z * J[0][0]) / det;
           m.Depth = static_cast<float>(-p.z + glm::dot(slope, cell + 0.5 - projection.Center));
           m.DepthSlope[0] = static_cast<float>(slope.x);
           m.DepthSlope[1] = static_cast<float>(slope.y);
-          m.Threshold =
-            static_cast<float>(depthThreshold * std::max(glm::length(a0), glm::length(a1)));
-          m.Mass = static_cast<float>(std::abs(glm::determinant(J)));
+          m.Threshold = static_cast<float>(
+            depthThreshold * std::sqrt(std::max(glm::dot(a0, a0), glm::dot(a1, a1))));
+          m.Mass = static_cast<float>(std::abs(det));
           const double facing = backFacing ? -1.0 : 1.0;
           for (int c = 0; c < 3; ++c)
           {
@@ -624,7 +629,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           const vtkIdType chunk = i / ChunkSize;
           const int band = (static_cast<int>(cell.y) + reach) / BandHeight;
           minified[chunk * cellBands + band].push_back(m);
-          s.Culled = Minified;
+          reason = Minified;
           continue;
         }
         const splat::ResamplingKernel kernel =
@@ -635,11 +640,12 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         {
           continue;
         }
+        ScreenSplat& s = splats[i];
         s.X0 = box.x;
         s.X1 = box.y;
         s.Y0 = box.z;
         s.Y1 = box.w;
-        s.Culled = Kept;
+        reason = Kept;
 
         s.CenterX = static_cast<float>(kernel.Center.x);
         s.CenterY = static_cast<float>(kernel.Center.y);
@@ -689,13 +695,14 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<vtkIdType>& bandSplats = this->Internal->BandSplats;
   offsets.assign(bands + 1, 0);
   vtkIdType culled[5] = { 0, 0, 0, 0, 0 };
-  for (const ScreenSplat& s : splats)
+  for (std::size_t i = 0; i < splats.size(); ++i)
   {
-    ++culled[s.Culled];
-    if (s.Culled != Kept)
+    ++culled[reasons[i]];
+    if (reasons[i] != Kept)
     {
       continue;
     }
+    const ScreenSplat& s = splats[i];
     for (int b = s.Y0 / BandHeight; b <= s.Y1 / BandHeight; ++b)
     {
       ++offsets[b + 1];
@@ -715,11 +722,11 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
     std::vector<vtkIdType> fill(offsets.begin(), offsets.end() - 1);
     for (std::size_t i = 0; i < splats.size(); ++i)
     {
-      const ScreenSplat& s = splats[i];
-      if (s.Culled != Kept)
+      if (reasons[i] != Kept)
       {
         continue;
       }
+      const ScreenSplat& s = splats[i];
       for (int b = s.Y0 / BandHeight; b <= s.Y1 / BandHeight; ++b)
       {
         bandSplats[fill[b]++] = static_cast<vtkIdType>(i);

@@ -1,0 +1,278 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Unit tests of the CPU rasterizer's minified splats (vtkSurfaceSplatRasterizer::
+// SetMinifiedVariance): summed per pixel and spread by the low-pass filter once per pixel, they
+// stay within a stated error of the exact per-splat kernels, keep antialiased silhouettes against
+// the background and against another surface, and give the same image for any number of threads.
+#include "SplatRasterizerTestUtilities.h"
+#include "vtkSurfaceSplatRasterizer.h"
+
+#include "vtkNew.h"
+#include "vtkSMPTools.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+using namespace splat_test;
+
+namespace
+{
+constexpr int Size = 256;
+
+// n surfels on a sphere (Fibonacci sampling) of the given radius and center, radial normals,
+// circular with radius = the sampling spacing, colored by position.
+SurfelGrid SurfelSphere(int n, double radius, const glm::dvec3& center)
+{
+  SurfelGrid sphere;
+  const double spacing = radius * std::sqrt(4.0 * M_PI / n);
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i)
+  {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n;
+    const double r = std::sqrt(1.0 - z * z);
+    const glm::dvec3 normal(r * std::cos(golden * i), r * std::sin(golden * i), z);
+    glm::dvec3 t0, t1;
+    splat::TangentFrame(normal, t0, t1);
+    const glm::dvec3 p = center + radius * normal;
+    const glm::vec3 color = glm::vec3(0.5 + 0.5 * normal);
+    for (int c = 0; c < 3; ++c)
+    {
+      sphere.Positions.push_back(p[c]);
+      sphere.Normals.push_back(static_cast<float>(normal[c]));
+      sphere.Axes0.push_back(static_cast<float>(spacing * t0[c]));
+      sphere.Axes1.push_back(static_cast<float>(spacing * t1[c]));
+      sphere.Colors.push_back(color[c]);
+    }
+  }
+  return sphere;
+}
+
+void Append(SurfelGrid& to, const SurfelGrid& from)
+{
+  to.Positions.insert(to.Positions.end(), from.Positions.begin(), from.Positions.end());
+  for (auto member : { &SurfelGrid::Normals, &SurfelGrid::Axes0, &SurfelGrid::Axes1,
+         &SurfelGrid::Colors })
+  {
+    (to.*member).insert((to.*member).end(), (from.*member).begin(), (from.*member).end());
+  }
+}
+
+struct Frame
+{
+  std::vector<std::uint8_t> Colors;
+  vtkIdType Splatted = 0;
+  vtkIdType Minified = 0;
+};
+
+Frame Draw(const SurfelGrid& surfels, const vtkSurfaceSplatRasterizer::Camera& camera,
+  double minifiedVariance)
+{
+  std::vector<splat::Light> lights(1);
+  lights[0].Direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
+  splat::Material material;
+  material.Specular = glm::vec3(0.3f);
+  material.SpecularPower = 20.0f;
+  vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+  rasterizer->SetMinifiedVariance(minifiedVariance);
+  rasterizer->Render(surfels.View(), camera, lights, material);
+  return { rasterizer->GetColors(), rasterizer->GetSplattedCount(),
+    rasterizer->GetMinifiedCount() };
+}
+
+// Root mean square difference of channel `channel` (0..3) over the pixels where `where` holds.
+template <typename Predicate>
+double RMSE(const Frame& a, const Frame& b, int channel, Predicate where)
+{
+  double squared = 0.0;
+  std::size_t count = 0;
+  for (std::size_t pixel = 0; 4 * pixel < a.Colors.size(); ++pixel)
+  {
+    if (where(pixel))
+    {
+      const double d = (a.Colors[4 * pixel + channel] - b.Colors[4 * pixel + channel]) / 255.0;
+      squared += d * d;
+      ++count;
+    }
+  }
+  return count ? std::sqrt(squared / count) : 0.0;
+}
+
+double ColorRMSE(const Frame& a, const Frame& b)
+{
+  double sum = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    sum += std::pow(RMSE(a, b, c, [](std::size_t) { return true; }), 2);
+  }
+  return std::sqrt(sum / 3.0);
+}
+
+// Pixels that are partly covered: the antialiased silhouette.
+std::size_t PartlyCovered(const Frame& frame)
+{
+  std::size_t count = 0;
+  for (std::size_t pixel = 0; 4 * pixel < frame.Colors.size(); ++pixel)
+  {
+    const std::uint8_t alpha = frame.Colors[4 * pixel + 3];
+    count += alpha > 0 && alpha < 255;
+  }
+  return count;
+}
+
+// The radius in pixels of the disk whose area is the frame's summed coverage.
+double CoveredRadius(const Frame& frame)
+{
+  double area = 0.0;
+  for (std::size_t pixel = 0; 4 * pixel < frame.Colors.size(); ++pixel)
+  {
+    area += frame.Colors[4 * pixel + 3] / 255.0;
+  }
+  return std::sqrt(area / M_PI);
+}
+
+// The silhouette's radius in pixels of a sphere of radius r at distance d from a
+// FrontoParallelCamera.
+double SilhouetteRadius(double r, double d)
+{
+  return PixelsPerUnit(d, Size) * d * r / std::sqrt(d * d - r * r);
+}
+
+}
+
+// A sphere of sub-pixel splats (about 0.45 pixels apart) renders within the stated RMSE of the
+// exact kernels, and its silhouette against the background keeps its partial coverage, its
+// covered area within half a pixel of radius of the exact kernels' (both lie about 1.5 pixels
+// inside the true silhouette: coverage is the summed weight over tau, which the last splats at
+// a grazing angle do not reach).
+TEST(MinifiedSplats, SphereOfSubpixelSplatsMatchesTheExactKernels)
+{
+  const SurfelGrid sphere = SurfelSphere(400000, 0.3, glm::dvec3(0.0));
+  const vtkSurfaceSplatRasterizer::Camera camera = FrontoParallelCamera(1.8, Size);
+  const Frame exact = Draw(sphere, camera, 0.0);
+  const Frame minified = Draw(sphere, camera, 0.25);
+  EXPECT_EQ(exact.Minified, 0);
+  EXPECT_GT(minified.Minified, 0.99 * minified.Splatted);
+  EXPECT_EQ(minified.Splatted, exact.Splatted);
+  const double color = ColorRMSE(exact, minified);
+  const double alpha = RMSE(exact, minified, 3, [](std::size_t) { return true; });
+  const std::size_t edgeExact = PartlyCovered(exact);
+  const std::size_t edgeMinified = PartlyCovered(minified);
+  const double radius = SilhouetteRadius(0.3, 1.8);
+  const double radiusExact = CoveredRadius(exact);
+  const double radiusMinified = CoveredRadius(minified);
+  std::printf("sphere: color RMSE %.4f, alpha RMSE %.4f, partly covered pixels %zu (exact %zu), "
+              "covered radius %.2f (exact %.2f, true %.2f)\n",
+    color, alpha, edgeMinified, edgeExact, radiusMinified, radiusExact, radius);
+  EXPECT_LT(color, 0.015);
+  EXPECT_LT(alpha, 0.06);
+  EXPECT_GT(edgeExact, 100u);
+  EXPECT_GT(edgeMinified, 0.7 * edgeExact);
+  EXPECT_LT(edgeMinified, 2.0 * edgeExact);
+  EXPECT_NEAR(radiusMinified, radiusExact, 0.5);
+  EXPECT_NEAR(radiusExact, radius, 2.0);
+}
+
+// The same sphere in front of a plane of minified splats: where its silhouette crosses the
+// plane, pixels blend the two surfaces as the exact kernels do.
+TEST(MinifiedSplats, SilhouetteAgainstAnotherSurfaceStaysAntialiased)
+{
+  SurfelGrid scene = SurfelSphere(400000, 0.3, glm::dvec3(0.0));
+  Append(scene, SurfelGrid(601, 0.0025, glm::vec3(1.0f, 0.9f, 0.1f)));
+  for (std::size_t i = scene.Positions.size() - 3 * 601 * 601; i < scene.Positions.size();
+       i += 3)
+  {
+    scene.Positions[i + 2] = -0.5; // the plane behind the sphere
+  }
+  const vtkSurfaceSplatRasterizer::Camera camera = FrontoParallelCamera(1.8, Size);
+  const Frame exact = Draw(scene, camera, 0.0);
+  const Frame minified = Draw(scene, camera, 0.25);
+  EXPECT_GT(minified.Minified, 0.99 * minified.Splatted);
+  // The silhouette: pixels between 0.9 and 1.1 sphere radii from the image center.
+  const double radius = SilhouetteRadius(0.3, 1.8);
+  auto ring = [radius](std::size_t pixel)
+  {
+    const double x = pixel % Size + 0.5 - 0.5 * Size;
+    const double y = pixel / Size + 0.5 - 0.5 * Size;
+    const double r = std::sqrt(x * x + y * y);
+    return r > 0.9 * radius && r < 1.1 * radius;
+  };
+  double ringColor = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    ringColor += std::pow(RMSE(exact, minified, c, ring), 2);
+  }
+  ringColor = std::sqrt(ringColor / 3.0);
+  // Blended pixels: blue well below the sphere's and well above the plane's (0.1).
+  auto blended = [](const Frame& frame, std::size_t pixel)
+  {
+    const int blue = frame.Colors[4 * pixel + 2];
+    return blue > 60 && blue < 110;
+  };
+  std::size_t blendedExact = 0, blendedMinified = 0;
+  for (std::size_t pixel = 0; pixel < static_cast<std::size_t>(Size) * Size; ++pixel)
+  {
+    blendedExact += ring(pixel) && blended(exact, pixel);
+    blendedMinified += ring(pixel) && blended(minified, pixel);
+  }
+  std::printf("silhouette over a plane: color RMSE %.4f in the ring, blended pixels %zu (exact "
+              "%zu), color RMSE %.4f overall\n",
+    ringColor, blendedMinified, blendedExact, ColorRMSE(exact, minified));
+  // Pixel by pixel the antialiased edges differ by up to about one pixel's coverage.
+  EXPECT_LT(ringColor, 0.12);
+  EXPECT_GT(blendedExact, 50u);
+  EXPECT_GT(blendedMinified, 0.6 * blendedExact);
+}
+
+// A checkerboard plane seen at a grazing angle: splats near the camera keep their exact
+// kernels, those towards the horizon are minified; the image stays within the
+// stated RMSE of the exact one, where the checks have blurred to gray as EWA prescribes.
+TEST(MinifiedSplats, CheckerboardAtTheHorizonMatchesTheExactKernels)
+{
+  const double h = 0.004;
+  auto checks = [](double x, double y)
+  {
+    const bool odd = (static_cast<int>(std::floor(x / 0.05)) + static_cast<int>(std::floor(y / 0.05))) % 2;
+    return odd ? glm::vec3(0.9f) : glm::vec3(0.1f);
+  };
+  const SurfelGrid plane(501, 501, h, h, h, h, checks);
+  vtkSurfaceSplatRasterizer::Camera camera;
+  camera.ModelToEye =
+    glm::lookAt(glm::dvec3(0.0, -2.0, 0.15), glm::dvec3(0.0, 0.5, 0.0), glm::dvec3(0.0, 0.0, 1.0));
+  camera.EyeToClip = glm::perspective(glm::radians(40.0), 1.0, 0.01, 10.0);
+  camera.Viewport = glm::ivec2(Size, Size);
+  const Frame exact = Draw(plane, camera, 0.0);
+  const Frame minified = Draw(plane, camera, 0.25);
+  EXPECT_GT(minified.Minified, 0.2 * minified.Splatted);
+  EXPECT_LT(minified.Minified, 0.9 * minified.Splatted);
+  const double color = ColorRMSE(exact, minified);
+  std::printf("checkerboard: %lld of %lld splats minified, color RMSE %.4f\n",
+    static_cast<long long>(minified.Minified), static_cast<long long>(minified.Splatted), color);
+  EXPECT_LT(color, 0.02);
+}
+
+// The minified splats' sums do not depend on the number of threads.
+TEST(MinifiedSplats, SameImageForOneAndTwoThreads)
+{
+  const SurfelGrid sphere = SurfelSphere(100000, 0.3, glm::dvec3(0.0));
+  std::vector<Frame> frames;
+  for (int threads : { 1, 2 })
+  {
+    vtkSMPTools::Initialize(threads);
+    frames.push_back(Draw(sphere, FrontoParallelCamera(3.0, Size), 0.25));
+  }
+  EXPECT_GT(frames[0].Minified, 0.9 * frames[0].Splatted);
+  EXPECT_TRUE(frames[0].Colors == frames[1].Colors);
+}
+
+// Translucent splats always take the exact kernels.
+TEST(MinifiedSplats, TranslucentSplatsAreNotMinified)
+{
+  SurfelGrid sphere = SurfelSphere(100000, 0.3, glm::dvec3(0.0));
+  sphere.Opacities.assign(100000, 0.5f);
+  const Frame frame = Draw(sphere, FrontoParallelCamera(3.0, Size), 0.25);
+  EXPECT_GT(frame.Splatted, 0);
+  EXPECT_EQ(frame.Minified, 0);
+}
