@@ -101,7 +101,8 @@ inline std::string DefaultSettingDescription()
   const int layers = mapper->GetNumberOfLayers();
   text << FilterModeName(mapper->GetFilterMode()) << ", cutoff " << mapper->GetCutoff() << ", "
        << layers << (layers == 1 ? " layer" : " layers") << ", edge AA "
-       << (mapper->GetEdgeAntialiasing() ? "on" : "off");
+       << (mapper->GetEdgeAntialiasing() ? "on" : "off") << ", minified variance "
+       << mapper->GetMinifiedVariance() << " (CPU)";
   return text.str();
 }
 
@@ -113,6 +114,7 @@ struct SplatSetting
   std::string Name;   // the table's setting column
   std::function<void(vtkSurfaceSplatMapper*)> Apply;
   bool OpenGLOnly = false; // the CPU backend would draw its default instead
+  bool CPUOnly = false;    // the OpenGL backend would draw its default instead
 };
 
 inline std::vector<SplatSetting> SplatSettings()
@@ -130,6 +132,10 @@ inline std::vector<SplatSetting> SplatSettings()
       true },
     { "layers", "layers=1", [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayers(1); } },
     { "layers", "layers=5", [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayers(5); } },
+    { "minified", "minified=0 (exact)",
+      [](vtkSurfaceSplatMapper* m) { m->SetMinifiedVariance(0.0); }, false, true },
+    { "minified", "minified=1",
+      [](vtkSurfaceSplatMapper* m) { m->SetMinifiedVariance(1.0); }, false, true },
   };
   // Edge antialiasing: the opposite of the default.
   vtkNew<vtkSurfaceSplatMapper> probe;
@@ -241,7 +247,7 @@ inline std::vector<Case> Cases(
     }
     for (const SplatSetting& s : SplatSettings())
     {
-      if (cpu && s.OpenGLOnly)
+      if (cpu ? s.OpenGLOnly : s.CPUOnly)
       {
         continue;
       }
