@@ -70,22 +70,29 @@ struct PointProjection
 };
 
 /**
- * Projects p through toClip and the viewport mapping. Returns false when p is not strictly in
- * front of the eye (clip w <= 0), where the linearization does not exist.
+ * The projection of a point whose clip coordinates are (clipXY, ., clipW). Returns false when
+ * it is not strictly in front of the eye (clip w <= 0), where the linearization does not exist.
  */
+inline bool ProjectClip(const glm::dvec2& clipXY, double clipW, const glm::dvec2& viewportSize,
+  PointProjection& out)
+{
+  if (!(clipW > 0.0))
+  {
+    return false;
+  }
+  out.InverseW = 1.0 / clipW;
+  out.Ndc = clipXY * out.InverseW;
+  out.HalfSize = 0.5 * viewportSize;
+  out.Center = (out.Ndc + 1.0) * out.HalfSize;
+  return true;
+}
+
+/// Projects p through toClip and the viewport mapping; false where ProjectClip says so.
 inline bool ProjectPoint(const glm::dmat4& toClip, const glm::dvec2& viewportSize,
   const glm::dvec3& p, PointProjection& out)
 {
   const glm::dvec4 c = toClip * glm::dvec4(p, 1.0);
-  if (!(c.w > 0.0))
-  {
-    return false;
-  }
-  out.InverseW = 1.0 / c.w;
-  out.Ndc = glm::dvec2(c.x, c.y) * out.InverseW;
-  out.HalfSize = 0.5 * viewportSize;
-  out.Center = (out.Ndc + 1.0) * out.HalfSize;
-  return true;
+  return ProjectClip(glm::dvec2(c), c.w, viewportSize, out);
 }
 
 /**
@@ -96,14 +103,23 @@ inline bool ProjectPoint(const glm::dmat4& toClip, const glm::dvec2& viewportSiz
 inline bool ProjectSurfel(const glm::dmat4& modelToClip, const glm::dvec2& viewportSize,
   const glm::dvec3& p, const glm::dvec3& a0, const glm::dvec3& a1, SurfelProjection& out)
 {
+  // Only clip x, y and w matter, and directions have no translation: the rows x, y, w of the
+  // matrix's 3x3 part (this runs once per splat per frame).
+  const glm::dmat3 linear(modelToClip[0][0], modelToClip[0][1], modelToClip[0][3],
+    modelToClip[1][0], modelToClip[1][1], modelToClip[1][3], modelToClip[2][0],
+    modelToClip[2][1], modelToClip[2][3]);
+  const glm::dvec3 c =
+    linear * p + glm::dvec3(modelToClip[3][0], modelToClip[3][1], modelToClip[3][3]);
   PointProjection center;
-  if (!ProjectPoint(modelToClip, viewportSize, p, center))
+  if (!ProjectClip(glm::dvec2(c), c.z, viewportSize, center))
   {
     return false;
   }
   out.Center = center.Center;
-  out.Jacobian[0] = center.PixelDerivative(modelToClip * glm::dvec4(a0, 0.0));
-  out.Jacobian[1] = center.PixelDerivative(modelToClip * glm::dvec4(a1, 0.0));
+  const glm::dvec3 d0 = linear * a0;
+  const glm::dvec3 d1 = linear * a1;
+  out.Jacobian[0] = center.PixelDerivative(glm::dvec4(d0.x, d0.y, 0.0, d0.z));
+  out.Jacobian[1] = center.PixelDerivative(glm::dvec4(d1.x, d1.y, 0.0, d1.z));
   return true;
 }
 

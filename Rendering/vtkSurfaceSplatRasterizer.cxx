@@ -551,6 +551,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<std::uint8_t>& reasons = this->Internal->CullReasons;
   reasons.resize(surfels.Count);
   const glm::dmat3 axisToEye(modelToEye);
+  const glm::dvec3 eyeTranslation(modelToEye[3]);
   vtkSMPTools::For(0, chunks, 1,
     [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
     {
@@ -568,7 +569,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         const float* n = surfels.Normals + 3 * i;
         const float* axis0 = surfels.Axes0 + 3 * i;
         const float* axis1 = surfels.Axes1 + 3 * i;
-        const glm::dvec3 p(modelToEye * glm::dvec4(position[0], position[1], position[2], 1.0));
+        const glm::dvec3 p =
+          axisToEye * glm::dvec3(position[0], position[1], position[2]) + eyeTranslation;
         if (!(-p.z >= nearDepth && -p.z <= farDepth))
         {
           continue;
