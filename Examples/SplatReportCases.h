@@ -134,8 +134,8 @@ inline std::vector<SplatSetting> SplatSettings()
     { "layers", "layers=5", [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayers(5); } },
     { "minified", "minified=0 (exact)",
       [](vtkSurfaceSplatMapper* m) { m->SetMinifiedVariance(0.0); }, false, true },
-    { "minified", "minified=1",
-      [](vtkSurfaceSplatMapper* m) { m->SetMinifiedVariance(1.0); }, false, true },
+    { "minified", "minified=0.25",
+      [](vtkSurfaceSplatMapper* m) { m->SetMinifiedVariance(0.25); }, false, true },
   };
   // Edge antialiasing: the opposite of the default.
   vtkNew<vtkSurfaceSplatMapper> probe;

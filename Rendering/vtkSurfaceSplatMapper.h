@@ -116,11 +116,11 @@ public:
   ///@{
   /**
    * CPU backend: opaque surfels whose warped basis function has no variance above this many
-   * pixels^2 (far below the screen low-pass filter, the usual case for dense clouds seen whole)
-   * are summed into the pixel holding their center and spread by the low-pass filter once per
-   * pixel, instead of each drawing its own kernel over several pixels: several times faster on
-   * dense data, within a small error of the exact kernels (see
-   * vtkSurfaceSplatRasterizer::SetMinifiedVariance). Default 0.25; 0 draws every splat with its
+   * pixels^2 (no larger than the screen low-pass filter: the usual case for dense clouds seen
+   * whole) are summed into the pixel holding their center and spread by the low-pass filter
+   * once per pixel, instead of each drawing its own kernel over several pixels: several times
+   * faster on dense data, within a small error of the exact kernels (see
+   * vtkSurfaceSplatRasterizer::SetMinifiedVariance). Default 0.75; 0 draws every splat with its
    * exact kernel.
    */
   void SetMinifiedVariance(double variance);

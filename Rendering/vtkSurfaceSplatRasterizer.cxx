@@ -149,20 +149,22 @@ struct vtkSurfaceSplatRasterizer::MinifiedSplat
   float DepthSlope[2];
   float Threshold;
   float Mass;
+  float Spread; // the warped basis function's mean variance, pixels^2
   float Normal[3];
   float Color[3];
   float Alpha;
 };
 
 // One surface's minified splats whose centers lie in one pixel: their weighted sums and, once
-// the pixel is complete, the weighted means of their centers relative to the pixel's center
-// and of their depth slopes.
+// the pixel is complete, the weighted means of their centers relative to the pixel's center,
+// of their depth slopes and of their spreads.
 struct vtkSurfaceSplatRasterizer::PixelCell
 {
   Fragment Sum;
   float Threshold;
   float Offset[2];
   float DepthSlope[2];
+  float Spread;
 };
 
 struct vtkSurfaceSplatRasterizer::Internals
@@ -358,6 +360,7 @@ inline void Deposit(PixelCell* cells, std::uint8_t& count, int layers, const Min
     cell.Sum = NewFragment(m.Depth, m.Mass, m.Normal, m.Color, m.Alpha);
     cell.Threshold = m.Threshold;
     cell.Offset[0] = cell.Offset[1] = cell.DepthSlope[0] = cell.DepthSlope[1] = 0.0f;
+    cell.Spread = 0.0f;
   }
   else
   {
@@ -367,6 +370,7 @@ inline void Deposit(PixelCell* cells, std::uint8_t& count, int layers, const Min
   cell.Offset[1] += m.Mass * offsetY;
   cell.DepthSlope[0] += m.Mass * m.DepthSlope[0];
   cell.DepthSlope[1] += m.Mass * m.DepthSlope[1];
+  cell.Spread += m.Mass * m.Spread;
 }
 
 // exp(-beta) for beta in [0, cutoff], tabulated once per frame and linearly interpolated: the
@@ -532,12 +536,14 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<DifferentialSplat>& differentials = this->Internal->DifferentialSplats;
   differentials.resize(differential ? surfels.Count : 0);
   // Minified splats are summed per pixel where the exact kernel is the EWA one of an opaque
-  // surfel. A pixel gathers the cells whose mean center can lie within the cutoff's reach,
-  // sqrt(2 c) pixels, of its center: `reach` cells on each side, and as many outside the
-  // viewport.
+  // surfel. A pixel gathers the cells whose mean center can lie within the cutoff's reach of
+  // its center, sqrt(2 c (1 + spread)) pixels for the widest spread: `reach` cells on each
+  // side, and as many outside the viewport. (Cells one further can reach the cutoff's rim,
+  // where the kernel is below e^-c, only with their mean center at their edge: left out.)
   const bool minify = this->MinifiedVariance > 0.0 && filter == splat::KernelFilter::EWA &&
     !differential && !translucent;
-  const int reach = static_cast<int>(std::floor(std::sqrt(2.0 * cutoff) + 0.5));
+  const int reach =
+    static_cast<int>(std::floor(std::sqrt(2.0 * cutoff * (1.0 + this->MinifiedVariance))));
   const int cellWidth = width + 2 * reach;
   const int cellHeight = height + 2 * reach;
   const int cellBands = (cellHeight + BandHeight - 1) / BandHeight;
@@ -597,9 +603,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           continue;
         }
         const glm::dmat2& J = projection.Jacobian;
-        if (minify &&
-          LargestEigenvalue(splat::SurfelBasisVariance * (J * glm::transpose(J))) <=
-            this->MinifiedVariance)
+        const glm::dmat2 warped = splat::SurfelBasisVariance * (J * glm::transpose(J));
+        if (minify && LargestEigenvalue(warped) <= this->MinifiedVariance)
         {
           const glm::dvec2 cell = glm::floor(projection.Center);
           if (!(cell.x >= -reach && cell.x < width + reach && cell.y >= -reach &&
@@ -621,6 +626,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           m.Threshold = static_cast<float>(
             depthThreshold * std::sqrt(std::max(glm::dot(a0, a0), glm::dot(a1, a1))));
           m.Mass = static_cast<float>(std::abs(det));
+          m.Spread = static_cast<float>(0.5 * (warped[0][0] + warped[1][1]));
           const double facing = backFacing ? -1.0 : 1.0;
           for (int c = 0; c < 3; ++c)
           {
@@ -879,13 +885,14 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
             c.Offset[k] /= c.Sum.Weight;
             c.DepthSlope[k] /= c.Sum.Weight;
           }
+          c.Spread /= c.Sum.Weight;
         }
       }
     });
 
-  // 4. Each pixel gathers its neighbors' cells through the low-pass filter, the unit Gaussian
-  //    (1 / 2 pi) e^-beta of the offset to their mean centers within the cutoff, into its own
-  //    fragments as one contribution per cell.
+  // 4. Each pixel gathers its neighbors' cells into its own fragments, one contribution per
+  //    cell: the low-pass filter widened by the cell's spread, the Gaussian of variance
+  //    v = 1 + spread, e^-beta / (2 pi v), at the offset to its mean center within the cutoff.
   std::vector<vtkIdType> gathered(bands, 0);
   vtkSMPTools::For(0, bands, 1,
     [&](vtkIdType bandBegin, vtkIdType bandEnd)
@@ -911,7 +918,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                 const PixelCell& c = cells[cell * layers + j];
                 const float ox = dx + c.Offset[0];
                 const float oy = dy + c.Offset[1];
-                const float beta = 0.5f * (ox * ox + oy * oy);
+                const float variance = 1.0f + c.Spread;
+                const float beta = 0.5f * (ox * ox + oy * oy) / variance;
                 // The cell's plane at this pixel's center, dx, dy pixels from its own.
                 const float z = c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1];
                 if (!(beta < cutoffF) || (sceneDepths && z > sceneDepths[pixel]))
@@ -924,7 +932,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                 {
                   continue;
                 }
-                const float w = static_cast<float>(splat::InverseTwoPi) * exponential(beta);
+                const float w =
+                  static_cast<float>(splat::InverseTwoPi) * exponential(beta) / variance;
                 if (inserted)
                 {
                   pixelFragments[i] = Scaled(c.Sum, w, z);

@@ -116,14 +116,15 @@ public:
 
   /**
    * Minified splats, accumulated per pixel: an opaque EWA splat whose warped basis function
-   * (J Vr J^T of eq. 6) has no variance above this many pixels^2 is far smaller than the screen
-   * low-pass filter, so its resampling kernel is nearly the low-pass alone, centered on it. Such
-   * splats are summed into the pixel that holds their center (weights, attributes and the
-   * weighted mean of their centers, with the same z threshold as the exact path), and each
-   * pixel then gathers its neighbors' sums through the low-pass Gaussian evaluated at their
-   * mean centers: one write per splat instead of a kernel over several pixels. Default 0.25;
-   * 0 draws every splat with its exact kernel. Translucent scenes, differential points and the
-   * other filters always take the exact kernel.
+   * (J Vr J^T of eq. 6) has no variance above this many pixels^2 is about as small as the screen
+   * low-pass filter or smaller, so its resampling kernel is nearly a Gaussian of variance
+   * 1 + its mean warped variance, centered on it. Such splats are summed into the pixel that
+   * holds their center (weights, attributes, and the weighted means of their centers, depth
+   * slopes and warped variances, with the z threshold of the exact path), and each pixel then
+   * gathers its neighbors' sums through that Gaussian at their mean centers: one write per
+   * splat instead of a kernel over several pixels. Default 0.75 (splats up to about 1.2 pixels
+   * apart); 0 draws every splat with its exact kernel. Translucent scenes, differential points
+   * and the other filters always take the exact kernel.
    */
   vtkSetClampMacro(MinifiedVariance, double, 0.0, 1.0);
   vtkGetMacro(MinifiedVariance, double);
@@ -235,7 +236,7 @@ protected:
   splat::KernelFilter Filter = splat::KernelFilter::EWA;
   bool BackfaceCulling = false;
 
-  double MinifiedVariance = 0.25;
+  double MinifiedVariance = 0.75;
 
   vtkIdType SplattedCount = 0;
   vtkIdType MinifiedCount = 0;
