@@ -62,9 +62,10 @@ and prints CSV rows:
   scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb,
   rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat,peer_ratio,drawn_by
 Settings: vtkSurfaceSplatMapper runs on each backend (the CPU rasterizer, then OpenGL) as
-"default" (exact EWA) on every scene and, on the sphere (closed, outward normals), also as
-"backface" (the actor's BackfaceCulling on); its OpenGL backend also as "approximate" (the
-APPROXIMATE filter mode); vtkPointGaussianMapper runs as "disk". Under a software OpenGL
+"default" (EWA; on the CPU minified splats summed per pixel, the default MinifiedVariance) on
+every scene and, on the sphere (closed, outward normals), also as "backface" (the actor's
+BackfaceCulling on); its CPU backend also as "exact" (MinifiedVariance 0: every splat its own
+kernel), its OpenGL backend as "approximate" (the APPROXIMATE filter mode); vtkPointGaussianMapper runs as "disk". Under a software OpenGL
 renderer (Mesa's llvmpipe) the OpenGL rows measure that renderer, not a GPU.
 ms_per_frame is the median over the timed frames after one warm-up frame; peak_rss_mb is the
 peak resident memory of the whole process so far (cases run from small to large).
@@ -254,13 +255,21 @@ std::vector<MapperKind> Kinds(const Options& options)
       const MapperKind splat{ "splat", "vtkSurfaceSplatMapper", name, "default", false, false,
         backend, vtkSurfaceSplatMapper::EWA };
       kinds.push_back(splat);
-      // APPROXIMATE is OpenGL only: the CPU would draw EWA again.
+      // APPROXIMATE is OpenGL only: the CPU would draw EWA again. Minified splats are the
+      // CPU's: OpenGL always draws exact kernels.
       if (backend == vtkSplatBackend::OPENGL)
       {
         MapperKind approximate = splat;
         approximate.Setting = "approximate";
         approximate.FilterMode = vtkSurfaceSplatMapper::APPROXIMATE;
         kinds.push_back(approximate);
+      }
+      else
+      {
+        MapperKind exact = splat;
+        exact.Setting = "exact";
+        exact.ExactKernels = true;
+        kinds.push_back(exact);
       }
       MapperKind backface = splat;
       backface.Setting = "backface";
@@ -313,6 +322,10 @@ vtkSmartPointer<vtkMapper> MakeMapper(const MapperKind& kind, vtkPolyData* surfe
     mapper->SetInputData(surfels);
     mapper->SetBackend(kind.SplatBackend);
     mapper->SetFilterMode(kind.FilterMode);
+    if (kind.ExactKernels)
+    {
+      mapper->SetMinifiedVariance(0.0);
+    }
     return mapper;
   }
   return splatexample::PointGaussianDisks(surfels);

@@ -71,6 +71,7 @@ struct MapperKind
   int SplatBackend = vtkSplatBackend::AUTO; // the splat mappers' SetBackend
   int FilterMode = vtkSurfaceSplatMapper::EWA;
   int Ordering = vtkVolumeSplatMapper::BLENDED; // vtkVolumeSplatMapper's SetOrderingMode
+  bool ExactKernels = false; // vtkSurfaceSplatMapper's SetMinifiedVariance(0)
 };
 
 // What a case draws: a prop (an actor or a volume) with its mapper, and the mapper's input.
