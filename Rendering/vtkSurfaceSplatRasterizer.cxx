@@ -174,6 +174,16 @@ struct vtkSurfaceSplatRasterizer::Internals
   std::vector<DifferentialSplat> DifferentialSplats; // parallel to Splats; empty for surfels
   std::vector<vtkIdType> BandOffsets; // per band, into BandSplats
   std::vector<vtkIdType> BandSplats;  // splat indices, band by band, in input order
+  // The cells of the minified splats: a pixel gathers those within `Reach` cells, so the grid
+  // pads the viewport by as many on each side, in bands of BandHeight rows.
+  struct CellGrid
+  {
+    int Reach = 0;
+    int Width = 0;
+    int Height = 0;
+    int Bands = 0;
+  };
+  CellGrid Grid;
   // Minified splats of chunk c whose center lies in cell band b: MinifiedSplats[c * bands + b].
   std::vector<std::vector<MinifiedSplat>> MinifiedSplats;
   // Per pixel of the viewport padded by the gather's reach, its cells, front to back.
@@ -373,6 +383,38 @@ inline void Deposit(PixelCell* cells, std::uint8_t& count, int layers, const Min
   cell.Spread += m.Mass * m.Spread;
 }
 
+// A minified splat from its eye-space center p and axes a0, a1, its projection and warped basis
+// variance, its normal turned towards the viewer and its color.
+MinifiedSplat MakeMinifiedSplat(const glm::dvec3& p, const glm::dvec3& a0, const glm::dvec3& a1,
+  const splat::SurfelProjection& projection, const glm::dmat2& warped, const glm::dvec3& normal,
+  const float* color, double depthThreshold)
+{
+  MinifiedSplat m;
+  m.CenterX = static_cast<float>(projection.Center.x);
+  m.CenterY = static_cast<float>(projection.Center.y);
+  // Along the axes the eye depth changes by -(a0.z, a1.z) per axis unit, and the pixel
+  // position by J.
+  const glm::dmat2& J = projection.Jacobian;
+  const double det = glm::determinant(J);
+  const glm::dvec2 slope =
+    glm::dvec2(a1.z * J[0][1] - a0.z * J[1][1], a0.z * J[1][0] - a1.z * J[0][0]) / det;
+  const glm::dvec2 cellCenter = glm::floor(projection.Center) + 0.5;
+  m.Depth = static_cast<float>(-p.z + glm::dot(slope, cellCenter - projection.Center));
+  m.DepthSlope[0] = static_cast<float>(slope.x);
+  m.DepthSlope[1] = static_cast<float>(slope.y);
+  m.Threshold = static_cast<float>(
+    depthThreshold * std::sqrt(std::max(glm::dot(a0, a0), glm::dot(a1, a1))));
+  m.Mass = static_cast<float>(std::abs(det));
+  m.Spread = static_cast<float>(0.5 * (warped[0][0] + warped[1][1]));
+  for (int c = 0; c < 3; ++c)
+  {
+    m.Normal[c] = static_cast<float>(normal[c]);
+    m.Color[c] = color[c];
+  }
+  m.Alpha = 1.0f;
+  return m;
+}
+
 // exp(-beta) for beta in [0, cutoff], tabulated once per frame and linearly interpolated: the
 // paper's lookup table, within 2e-6 of std::exp for the default cutoff.
 class NegativeExponential
@@ -542,11 +584,14 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   // where the kernel is below e^-c, only with their mean center at their edge: left out.)
   const bool minify = this->MinifiedVariance > 0.0 && filter == splat::KernelFilter::EWA &&
     !differential && !translucent;
-  const int reach =
+  Internals::CellGrid& grid = this->Internal->Grid;
+  grid.Reach =
     static_cast<int>(std::floor(std::sqrt(2.0 * cutoff * (1.0 + this->MinifiedVariance))));
-  const int cellWidth = width + 2 * reach;
-  const int cellHeight = height + 2 * reach;
-  const int cellBands = (cellHeight + BandHeight - 1) / BandHeight;
+  grid.Width = width + 2 * grid.Reach;
+  grid.Height = height + 2 * grid.Reach;
+  grid.Bands = (grid.Height + BandHeight - 1) / BandHeight;
+  const int reach = grid.Reach;
+  const int cellBands = grid.Bands;
   const vtkIdType chunks = (static_cast<vtkIdType>(surfels.Count) + ChunkSize - 1) / ChunkSize;
   std::vector<std::vector<MinifiedSplat>>& minified = this->Internal->MinifiedSplats;
   minified.resize(minify ? chunks * cellBands : 0);
@@ -607,37 +652,15 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         if (minify && LargestEigenvalue(warped) <= this->MinifiedVariance)
         {
           const glm::dvec2 cell = glm::floor(projection.Center);
-          if (!(cell.x >= -reach && cell.x < width + reach && cell.y >= -reach &&
-                cell.y < height + reach))
+          if (cell.x >= -reach && cell.x < width + reach && cell.y >= -reach &&
+            cell.y < height + reach)
           {
-            continue;
+            const int band = (static_cast<int>(cell.y) + reach) / BandHeight;
+            minified[(i / ChunkSize) * cellBands + band].push_back(
+              MakeMinifiedSplat(p, a0, a1, projection, warped, backFacing ? -normal : normal,
+                surfels.Colors + 3 * i, depthThreshold));
+            reason = Minified;
           }
-          MinifiedSplat m;
-          m.CenterX = static_cast<float>(projection.Center.x);
-          m.CenterY = static_cast<float>(projection.Center.y);
-          // Along the axes the eye depth changes by -(a0.z, a1.z) per axis unit, and the
-          // pixel position by J.
-          const double det = glm::determinant(J);
-          const glm::dvec2 slope =
-            glm::dvec2(a1.z * J[0][1] - a0.z * J[1][1], a0.z * J[1][0] - a1.z * J[0][0]) / det;
-          m.Depth = static_cast<float>(-p.z + glm::dot(slope, cell + 0.5 - projection.Center));
-          m.DepthSlope[0] = static_cast<float>(slope.x);
-          m.DepthSlope[1] = static_cast<float>(slope.y);
-          m.Threshold = static_cast<float>(
-            depthThreshold * std::sqrt(std::max(glm::dot(a0, a0), glm::dot(a1, a1))));
-          m.Mass = static_cast<float>(std::abs(det));
-          m.Spread = static_cast<float>(0.5 * (warped[0][0] + warped[1][1]));
-          const double facing = backFacing ? -1.0 : 1.0;
-          for (int c = 0; c < 3; ++c)
-          {
-            m.Normal[c] = static_cast<float>(facing * normal[c]);
-            m.Color[c] = surfels.Colors[3 * i + c];
-          }
-          m.Alpha = 1.0f;
-          const vtkIdType chunk = i / ChunkSize;
-          const int band = (static_cast<int>(cell.y) + reach) / BandHeight;
-          minified[chunk * cellBands + band].push_back(m);
-          reason = Minified;
           continue;
         }
         const splat::ResamplingKernel kernel =
@@ -842,34 +865,42 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   {
     this->FragmentCount += f;
   }
-  if (this->MinifiedCount == 0)
+  if (this->MinifiedCount > 0)
   {
-    return;
+    this->SumMinifiedSplats(chunks);
+    this->FragmentCount += this->GatherMinifiedSplats(sceneDepths);
   }
+}
 
-  // 3. Minified splats: each cell band sums its splats chunk by chunk, in input order, into the
-  //    cells of the pixels holding their centers, then turns the offset sums into mean centers.
+//------------------------------------------------------------------------------
+void vtkSurfaceSplatRasterizer::SumMinifiedSplats(vtkIdType chunks)
+{
+  // Each cell band sums its splats chunk by chunk, in input order, into the cells of the pixels
+  // holding their centers, then turns the sums of offsets, slopes and spreads into means.
+  const Internals::CellGrid& grid = this->Internal->Grid;
+  const std::vector<std::vector<MinifiedSplat>>& minified = this->Internal->MinifiedSplats;
   std::vector<PixelCell>& cells = this->Internal->Cells;
   std::vector<std::uint8_t>& cellCounts = this->Internal->CellCounts;
-  cells.resize(static_cast<std::size_t>(cellWidth) * cellHeight * layers);
-  cellCounts.resize(static_cast<std::size_t>(cellWidth) * cellHeight);
-  vtkSMPTools::For(0, cellBands, 1,
+  const int layers = this->Layers;
+  cells.resize(static_cast<std::size_t>(grid.Width) * grid.Height * layers);
+  cellCounts.resize(static_cast<std::size_t>(grid.Width) * grid.Height);
+  vtkSMPTools::For(0, grid.Bands, 1,
     [&](vtkIdType bandBegin, vtkIdType bandEnd)
     {
-      const std::size_t first = static_cast<std::size_t>(bandBegin) * BandHeight * cellWidth;
+      const std::size_t first = static_cast<std::size_t>(bandBegin) * BandHeight * grid.Width;
       const std::size_t last = std::min(
-        static_cast<std::size_t>(bandEnd) * BandHeight * cellWidth, cellCounts.size());
+        static_cast<std::size_t>(bandEnd) * BandHeight * grid.Width, cellCounts.size());
       std::fill(cellCounts.begin() + first, cellCounts.begin() + last, 0);
       for (vtkIdType b = bandBegin; b < bandEnd; ++b)
       {
         for (vtkIdType chunk = 0; chunk < chunks; ++chunk)
         {
-          for (const MinifiedSplat& m : minified[chunk * cellBands + b])
+          for (const MinifiedSplat& m : minified[chunk * grid.Bands + b])
           {
             const int x = static_cast<int>(std::floor(m.CenterX));
             const int y = static_cast<int>(std::floor(m.CenterY));
             const std::size_t cell =
-              static_cast<std::size_t>(y + reach) * cellWidth + (x + reach);
+              static_cast<std::size_t>(y + grid.Reach) * grid.Width + (x + grid.Reach);
             Deposit(&cells[cell * layers], cellCounts[cell], layers, m, m.CenterX - (x + 0.5f),
               m.CenterY - (y + 0.5f));
           }
@@ -889,10 +920,24 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         }
       }
     });
+}
 
-  // 4. Each pixel gathers its neighbors' cells into its own fragments, one contribution per
-  //    cell: the low-pass filter widened by the cell's spread, the Gaussian of variance
-  //    v = 1 + spread, e^-beta / (2 pi v), at the offset to its mean center within the cutoff.
+//------------------------------------------------------------------------------
+vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDepths)
+{
+  // Each pixel gathers its neighbors' cells into its own fragments, one contribution per cell:
+  // the low-pass filter widened by the cell's spread, the Gaussian of variance v = 1 + spread,
+  // e^-beta / (2 pi v), at the offset to its mean center within the cutoff.
+  const Internals::CellGrid& grid = this->Internal->Grid;
+  const std::vector<PixelCell>& cells = this->Internal->Cells;
+  const std::vector<std::uint8_t>& cellCounts = this->Internal->CellCounts;
+  const int width = this->CurrentFrame.View.Viewport.x;
+  const int height = this->CurrentFrame.View.Viewport.y;
+  const int layers = this->Layers;
+  const int reach = grid.Reach;
+  const float cutoff = static_cast<float>(this->Cutoff);
+  const NegativeExponential exponential(cutoff);
+  const int bands = (height + BandHeight - 1) / BandHeight;
   std::vector<vtkIdType> gathered(bands, 0);
   vtkSMPTools::For(0, bands, 1,
     [&](vtkIdType bandBegin, vtkIdType bandEnd)
@@ -909,7 +954,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           std::uint8_t& count = this->FragmentCounts[pixel];
           for (int dy = -reach; dy <= reach; ++dy)
           {
-            const std::size_t row = static_cast<std::size_t>(y + dy + reach) * cellWidth;
+            const std::size_t row = static_cast<std::size_t>(y + dy + reach) * grid.Width;
             for (int dx = -reach; dx <= reach; ++dx)
             {
               const std::size_t cell = row + (x + dx + reach);
@@ -922,7 +967,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                 const float beta = 0.5f * (ox * ox + oy * oy) / variance;
                 // The cell's plane at this pixel's center, dx, dy pixels from its own.
                 const float z = c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1];
-                if (!(beta < cutoffF) || (sceneDepths && z > sceneDepths[pixel]))
+                if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]))
                 {
                   continue;
                 }
@@ -950,7 +995,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
       }
       gathered[bandBegin] = written;
     });
-  this->FragmentCount += std::accumulate(gathered.begin(), gathered.end(), vtkIdType(0));
+  return std::accumulate(gathered.begin(), gathered.end(), vtkIdType(0));
 }
 
 //------------------------------------------------------------------------------

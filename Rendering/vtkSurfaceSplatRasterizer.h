@@ -17,7 +17,9 @@
  *    accumulated into a surface within the z threshold (a multiple of the surfel's eye-space
  *    radius), inserted in front, or dropped behind. Translucent scenes keep up to NumberOfLayers fragments per pixel (section 6):
  *    accumulate-or-separate, insertion into a free layer, or merging of the two fragments
- *    nearest in depth, shaded first (eq. 12).
+ *    nearest in depth, shaded first (eq. 12). Opaque minified splats (see MinifiedVariance) are
+ *    summed into the pixel holding their center instead (2b), and each pixel then gathers its
+ *    neighbors' sums through the low-pass filter into its fragments (2c).
  * 3. Resolve: normalization by the summed weights (eq. 9), deferred shading of the filtered
  *    normal with VTK's lighting model (SplatLighting.h), coverage from the summed weights
  *    multiplied into alpha (edge antialiasing, section 7), and a back-to-front blend.
@@ -222,6 +224,10 @@ protected:
 
   void Splat(const Surfels& surfels, const Camera& camera, const std::vector<splat::Light>& lights,
     const splat::Material& material);
+  /// Steps 2b and 2c for the minified splats (see SetMinifiedVariance): their sums per pixel,
+  /// then each pixel's gather of its neighbors' sums (returns the contributions written).
+  void SumMinifiedSplats(vtkIdType chunks);
+  vtkIdType GatherMinifiedSplats(const float* sceneDepths);
   void AddLayered(Fragment* fragments, std::uint8_t& count, int x, int y, float z, float w,
     const float* normal, const ScreenSplat& s) const;
   /// Shaded premultiplied color and alpha (coverage included) of a fragment at pixel (x, y).
