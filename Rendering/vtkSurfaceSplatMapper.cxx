@@ -48,6 +48,9 @@ struct vtkSurfaceSplatMapper::SurfelArrays
   std::vector<float> Curvatures; // differential points' lambda_u, lambda_v; empty for surfels
   std::vector<vtkIdType> PointIds; // the input point of each surfel, for picking
   bool ColorsFromScalars = false;
+  // The property the colors and opacities were taken from: actors sharing the mapper have
+  // their own (compared only, never dereferenced).
+  const vtkProperty* Property = nullptr;
   vtkTimeStamp BuildTime;
 
   vtkSurfaceSplatRasterizer::Surfels View() const
@@ -283,7 +286,7 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
         ? this->LookupTable->GetMTime()
         : vtkMTimeType(0) });
   SurfelArrays& s = *this->Surfels;
-  if (s.BuildTime.GetMTime() > changed)
+  if (s.BuildTime.GetMTime() > changed && s.Property == property)
   {
     return true;
   }
@@ -462,6 +465,7 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
                        "curvature, zero normal, non-positive radius or extent, or parallel "
                        "axes.");
   }
+  s.Property = property;
   s.BuildTime.Modified();
   return true;
 }
@@ -496,6 +500,7 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
       : static_cast<splat::KernelFilter>(this->FilterMode));
   this->Rasterizer->SetBackfaceCulling(property->GetBackfaceCulling());
 
+  this->Compositor->MoveGraphicsResources(ren, this);
   // Picking draws with OpenGL whatever the backend: the selector reads the framebuffer.
   if (vtkHardwareSelector* selector = ren->GetSelector())
   {
