@@ -132,6 +132,20 @@ bool IsFinite(const double* v, int n)
   }
   return true;
 }
+
+// v scaled to unit length, or zero where it has no direction (zero or not finite). Scaled by
+// its largest component first: the squares of components below 1e-154 underflow and those
+// above 1e154 overflow, which would make a valid normal or axis look zero or infinite.
+glm::dvec3 Unit(const glm::dvec3& v)
+{
+  const double largest = std::max({ std::abs(v.x), std::abs(v.y), std::abs(v.z) });
+  if (!(largest > 0.0 && std::isfinite(largest)))
+  {
+    return glm::dvec3(0.0);
+  }
+  const glm::dvec3 scaled = v / largest;
+  return scaled / glm::length(scaled);
+}
 }
 
 //------------------------------------------------------------------------------
@@ -392,10 +406,10 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
         curvatures->GetTuple(i, curvature);
         valid = valid && extent[0] > 0.0 && extent[1] > 0.0 && IsFinite(extent, 2) &&
           IsFinite(curvature, 2);
-        t0 *= extent[0] / glm::length(t0);
-        t1 *= extent[1] / glm::length(t1);
+        t0 = Unit(t0) * extent[0];
+        t1 = Unit(t1) * extent[1];
       }
-      const glm::dvec3 cross = glm::cross(t0, t1);
+      const glm::dvec3 cross = glm::cross(Unit(t0), Unit(t1));
       valid = valid && IsFinite(&t0.x, 3) && IsFinite(&t1.x, 3) && glm::length(cross) > 0.0;
       if (normals)
       {
@@ -410,13 +424,13 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
     {
       normals->GetTuple(i, &normal.x);
     }
-    const double length = glm::length(normal);
-    valid = valid && IsFinite(&normal.x, 3) && length > 0.0 && std::isfinite(length);
+    const glm::dvec3 unitNormal = Unit(normal);
+    valid = valid && IsFinite(&normal.x, 3) && unitNormal != glm::dvec3(0.0);
     if (valid && !axis0)
     {
       const double radius = radii ? radii->GetComponent(i, 0) : this->Radius;
       valid = radius > 0.0 && std::isfinite(radius);
-      splat::TangentFrame(normal / length, t0, t1);
+      splat::TangentFrame(unitNormal, t0, t1);
       t0 *= radius;
       t1 *= radius;
     }
@@ -425,7 +439,6 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
       ++skipped;
       continue;
     }
-    const glm::dvec3 unitNormal = normal / length;
     unsigned char rgba[4] = { 0, 0, 0, 255 };
     if (scalarColors)
     {
