@@ -550,7 +550,7 @@ std::vector<std::string> CsvFields(const std::string& row)
 // could not start or was killed).
 int RunSelf(const std::vector<std::string>& arguments)
 {
-  const std::string self = "/proc/self/exe";
+  const std::string self = vtksys::SystemTools::GetRealPath("/proc/self/exe");
   std::vector<char*> argv;
   argv.push_back(const_cast<char*>(self.c_str()));
   for (const std::string& argument : arguments)

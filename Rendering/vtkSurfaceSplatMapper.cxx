@@ -386,6 +386,11 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
     v->reserve(3 * n);
   }
   s.Positions.reserve(3 * n);
+  // Reserved, not grown: growing copies the array into one up to twice as large, a peak of up
+  // to three times its size.
+  s.Opacities.reserve(n);
+  s.PointIds.reserve(n);
+  s.Curvatures.reserve(differential ? 2 * n : 0);
   vtkIdType skipped = 0;
   for (vtkIdType i = 0; i < n; ++i)
   {
@@ -468,7 +473,8 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
   }
   if (!translucent)
   {
-    s.Opacities.clear();
+    // Freed, not only cleared: an opaque input keeps no opacities.
+    std::vector<float>().swap(s.Opacities);
   }
   this->NumberOfSkippedPoints = skipped;
   if (skipped > 0)
