@@ -137,6 +137,9 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
   --quick              smoke run: 20000 sphere points, 20000 Gaussians (a 64^3 grid), 50000
                        fog voxels, the MRI
                        shrunk by 2, 256x256, 2 frames
+  --scale              the scale run: 20 M sphere points and 20 M Gaussians at 1024x1024,
+                       vtkSurfaceSplatMapper and vtkVolumeSplatMapper on the CPU, 3 frames
+                       (about 6 GB and 15 minutes on 2 cores)
   --output FILE        CSV file, also written to stdout (default output/bench/bench.csv)
   --image-dir DIR      also write each case's last frame as a PNG into DIR
   --case K             run only the K-th case (from 0, in the order of the rows) of the one
@@ -222,6 +225,17 @@ Options ParseCommandLine(int argc, char* argv[])
         options.MriShrink = 2;
         options.Sizes = { 256 };
         options.Frames = 2;
+      } },
+    { "--scale",
+      [&]
+      {
+        options.Scenes = { "sphere", "gaussians" };
+        options.Points = { 20000000 };
+        options.Kernels = 20000000;
+        options.Sizes = { 1024 };
+        options.Mappers = { "splat" };
+        options.Backends = options.VolumeBackends = { "cpu" };
+        options.Frames = 3;
       } },
   };
   splatexample::ParseArguments(argc, argv, Usage, handlers, flags);
