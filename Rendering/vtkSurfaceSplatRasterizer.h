@@ -186,8 +186,8 @@ public:
   ///@{
   /**
    * What the last frame did: surfels splatted; surfels left out because they lie outside the
-   * view frustum (behind the eye, outside the near/far range, footprint outside the viewport),
-   * face away with BackfaceCulling on, or are edge-on (negligible weight); and pixel
+   * view frustum (behind the eye, wholly outside the near/far range, footprint outside the
+   * viewport), face away with BackfaceCulling on, or are edge-on (negligible weight); and pixel
    * contributions written.
    */
   vtkGetMacro(SplattedCount, vtkIdType);
