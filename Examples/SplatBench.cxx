@@ -36,6 +36,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -44,6 +45,10 @@
 #include <string>
 #include <vector>
 
+#include <spawn.h>    // posix_spawn
+#include <sys/wait.h> // waitpid
+
+extern char** environ; // for posix_spawn
 
 namespace
 {
@@ -67,8 +72,9 @@ every scene and, on the sphere (closed, outward normals), also as "backface" (th
 BackfaceCulling on); its CPU backend also as "exact" (MinifiedVariance 0: every splat its own
 kernel), its OpenGL backend as "approximate" (the APPROXIMATE filter mode); vtkPointGaussianMapper runs as "disk". Under a software OpenGL
 renderer (Mesa's llvmpipe) the OpenGL rows measure that renderer, not a GPU.
+Each case (row) runs in a fresh process of its own: this program again, with --case.
 ms_per_frame is the median over the timed frames after one warm-up frame; peak_rss_mb is the
-peak resident memory of the whole process so far (cases run from small to large).
+peak resident memory (VmHWM) of the case's process, its data included.
 rendered .. skipped are vtkSurfaceSplatMapper's counts for the last frame (splats drawn, culled
 outside the frustum, culled as back faces, left out as negligible, input points skipped as
 invalid); the OpenGL backend culls in its vertex shader without counting, so its splat counts
@@ -86,8 +92,7 @@ resampling is not timed; vtkFixedPointVolumeRayCastMapper only: VTK 9.1's
 vtkGPUVolumeRayCastMapper draws that grid nearly transparent). For volumes the counts are:
 rendered = kernels projected (a kernel counts once per list that splats it), frustum_culled,
 backface_culled empty, negligible = kernels of zero opacity (not in the lists), skipped =
-invalid kernels plus those reaching the near plane; the volume data is made once per scene,
-so bytes_per_splat is the mapper's memory (kernel lists, buffers) per kernel. Volume cases time
+invalid kernels plus those reaching the near plane. Volume cases time
 at most 3 frames, the volume marked modified before each. 3dgs is a generated 3D Gaussian
 Splatting capture of --kernels Gaussians flattened onto a torus (SplatCaptureScene.h: "Scale",
 "Rotation", peak "Opacity" and spherical harmonics of degree 3, evaluated for the camera every
@@ -100,9 +105,14 @@ peer_ratio is the peer's ms_per_frame at the same scene, points and size divided
 (above 1: faster than the peer): vtkPointGaussianMapper for surfaces,
 vtkFixedPointVolumeRayCastMapper for volumes. drawn_by is the backend that drew the splat
 mappers' last frame (GetLastBackend; an OpenGL request can end up on the CPU).
-bytes_per_splat is the resident memory the case added (its data, mapper and frames) per point:
-the current resident set size (/proc/self/statm) after the case's frames minus the one before
-its data was built, divided by the number of points. A one-line summary per case goes to stderr.
+bytes_per_splat is what a user should plan for per point (per kernel for volumes): the case
+process's peak resident memory (VmHWM of /proc/self/status, transient allocations included)
+minus the same process's resident memory before the case's data was made (with its window
+already rendered once, empty, at the case's size), divided by the points. It counts the data
+(points and their arrays; the image or the kernels of volumes), the mapper's own arrays and
+frame buffers, the OpenGL driver's copies (in-process under llvmpipe) and one-time costs such
+as shader compilation; for the ray casters, the grid they draw (for gaussians, its resampling).
+At small counts the per-pixel buffers dominate. A one-line summary per case goes to stderr.
 
 Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separated):
   --scenes LIST        sphere, bunny, mri, gaussians, 3dgs, vdb (default all; bunny and mri
@@ -128,8 +138,14 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
   --quick              smoke run: 20000 sphere points, 20000 Gaussians (a 64^3 grid), 50000
                        fog voxels, the MRI
                        shrunk by 2, 256x256, 2 frames
+  --scale              the scale run: 20 M sphere points and 20 M Gaussians at 1024x1024,
+                       vtkSurfaceSplatMapper and vtkVolumeSplatMapper on the CPU, 3 frames
+                       (about 6 GB and 15 minutes on 2 cores)
   --output FILE        CSV file, also written to stdout (default output/bench/bench.csv)
   --image-dir DIR      also write each case's last frame as a PNG into DIR
+  --case K             run only the K-th case (from 0, in the order of the rows) of the one
+                       scene, size and point count given, in this process, and write its row
+                       (peer_ratio empty) to --output: what each case's process runs
   --help               print this help
 
 Environment: SPLAT_DATA_DIR, the folder holding bunny.ply (default: ../shared/data next to the
@@ -196,6 +212,7 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--output", [&](const std::string&, const std::string& value) { options.Output = value; } },
     { "--image-dir",
       [&](const std::string&, const std::string& value) { options.ImageDir = value; } },
+    { "--case", CountInto(options.Case, 0, 100) },
   };
 
   const std::map<std::string, std::function<void()>> flags = {
@@ -209,6 +226,17 @@ Options ParseCommandLine(int argc, char* argv[])
         options.MriShrink = 2;
         options.Sizes = { 256 };
         options.Frames = 2;
+      } },
+    { "--scale",
+      [&]
+      {
+        options.Scenes = { "sphere", "gaussians" };
+        options.Points = { 20000000 };
+        options.Kernels = 20000000;
+        options.Sizes = { 1024 };
+        options.Mappers = { "splat" };
+        options.Backends = options.VolumeBackends = { "cpu" };
+        options.Frames = 3;
       } },
   };
   splatexample::ParseArguments(argc, argv, Usage, handlers, flags);
@@ -314,6 +342,36 @@ std::vector<MapperKind> VolumeKinds(const Options& options)
   return kinds;
 }
 
+// The cases of a scene, in the order they run: the backface setting only on the sphere (closed,
+// outward-oriented); the ray casters only where the scene has a grid for them (not 3dgs), and
+// vtkGPUVolumeRayCastMapper not on gaussians (VTK 9.1's draws that RGBA grid nearly
+// transparent, see splatexample::ResampleMixture).
+std::vector<MapperKind> SceneKinds(const std::string& scene, const Options& options)
+{
+  const bool surface = scene == "sphere" || scene == "bunny";
+  const bool grid = scene != "3dgs";
+  const bool gpuGrid = scene == "mri" || scene == "vdb";
+  std::vector<MapperKind> kinds = surface ? Kinds(options) : VolumeKinds(options);
+  const auto drawn = [&](const MapperKind& kind)
+  {
+    return surface ? !kind.ClosedOnly || scene == "sphere"
+                   : kind.Name == "splat" ||
+        (grid && (kind.Name == "fixedpoint" || (kind.Name == "gpuraycast" && gpuGrid)));
+  };
+  kinds.erase(std::remove_if(kinds.begin(), kinds.end(), std::not_fn(drawn)), kinds.end());
+  return kinds;
+}
+
+// The MapperKind::Name whose time a scene's peer_ratio column divides ("": no peer).
+std::string ScenePeer(const std::string& scene)
+{
+  if (scene == "sphere" || scene == "bunny")
+  {
+    return "pointgaussian";
+  }
+  return scene == "3dgs" ? "" : "fixedpoint";
+}
+
 vtkSmartPointer<vtkMapper> MakeMapper(const MapperKind& kind, vtkPolyData* surfels)
 {
   if (kind.Name == "splat")
@@ -331,16 +389,13 @@ vtkSmartPointer<vtkMapper> MakeMapper(const MapperKind& kind, vtkPolyData* surfe
   return splatexample::PointGaussianDisks(surfels);
 }
 
-// A surface scene: the points made afresh for every case by makeData (so that the case's memory
-// includes them), an actor, the camera framing the points.
-Scene SurfaceScene(const std::string& name, bool closed,
+// A surface scene: the points made by makeData, an actor, the camera framing the points.
+Scene SurfaceScene(const std::string& name,
   const std::function<vtkSmartPointer<vtkPolyData>()>& makeData, const Options& options)
 {
   Scene scene;
   scene.Name = name;
-  scene.Closed = closed;
-  scene.Kinds = Kinds(options);
-  scene.Peer = "pointgaussian";
+  scene.Kinds = SceneKinds(name, options);
   scene.Make = [makeData](const MapperKind& kind)
   {
     vtkSmartPointer<vtkPolyData> surfels = makeData();
@@ -357,26 +412,15 @@ Scene SurfaceScene(const std::string& name, bool closed,
 }
 
 // A volume scene: vtkVolumeSplatMapper draws `kernels` (image data or a point set of Gaussians)
-// with `property`; the ray casters draw the grid of makeGrid with its property (made on first
-// use, then kept: resampling the Gaussians takes a while), sampled along their rays at the
-// grid's spacing; vtkGPUVolumeRayCastMapper only where `gpuRayCaster`; without makeGrid, no ray
-// caster and no peer. The data is made once, outside the cases: bytes_per_splat counts the
-// mapper and its frames.
+// with `property`; the ray casters (SceneKinds says which) draw the grid of makeGrid with its
+// property (made on their first use), sampled along their rays at the grid's spacing.
 Scene VolumeScene(const std::string& name, vtkDataSet* kernels, vtkVolumeProperty* property,
   const std::function<splatexample::ResampledVolume()>& makeGrid,
-  const std::function<void(vtkRenderer*)>& place, bool gpuRayCaster, const Options& options)
+  const std::function<void(vtkRenderer*)>& place, const Options& options)
 {
   Scene scene;
   scene.Name = name;
-  scene.Kinds = VolumeKinds(options);
-  const auto drawn = [&](const MapperKind& kind)
-  {
-    return kind.Name == "splat" ||
-      (makeGrid && (kind.Name == "fixedpoint" || (kind.Name == "gpuraycast" && gpuRayCaster)));
-  };
-  scene.Kinds.erase(
-    std::remove_if(scene.Kinds.begin(), scene.Kinds.end(), std::not_fn(drawn)), scene.Kinds.end());
-  scene.Peer = makeGrid ? "fixedpoint" : "";
+  scene.Kinds = SceneKinds(name, options);
   scene.Frames = 3; // TestVolumeSplatCrossRenderer's three frames after the first
   vtkSmartPointer<vtkDataSet> data = kernels;
   vtkSmartPointer<vtkVolumeProperty> splatProperty = property;
@@ -404,75 +448,56 @@ Scene VolumeScene(const std::string& name, vtkDataSet* kernels, vtkVolumePropert
   return scene;
 }
 
-int Run(const Options& options)
+// Runs case options.Case of the one scene, size and point count on the command line in this
+// process and writes its CSV row to options.Output (see MeasureOneCase); the resident set before
+// the scene's data is made, with the window already rendered at the size, is the baseline of the
+// case's memory.
+int RunOneCase(const Options& options)
 {
-  splatexample::MakeFolder(vtksys::SystemTools::GetFilenamePath(options.Output));
-  splatexample::MakeFolder(options.ImageDir);
+  if (options.Scenes.size() != 1 || options.Sizes.size() != 1 || options.Points.size() != 1)
+  {
+    throw UsageError("--case needs one scene, one size and one point count");
+  }
   std::ofstream csv(options.Output);
   if (!csv)
   {
     throw std::runtime_error("cannot write '" + options.Output + "'");
   }
-  // The required columns first, then the culling counts, the memory per splat, the ratio to
-  // the peer and the backend that drew.
-  const char* const header =
-    "scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb,"
-    "rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat,peer_ratio,"
-    "drawn_by\n";
-  std::cout << header << std::flush;
-  csv << header << std::flush;
-
-  // One window for every case (see splatexample::MakeOffscreenWindow); each scene sets its size.
   vtkSmartPointer<vtkRenderWindow> window = splatexample::MakeOffscreenWindow();
   window->GetRenderers()->GetFirstRenderer()->SetBackground(0.1, 0.1, 0.15);
-
-  // The process's peak memory only grows: the small bunny first, then the spheres by size, then
-  // the volumes.
-  const auto wants = [&](const char* scene) { return Chosen(options.Scenes, scene); };
-  int rows = 0;
-  if (wants("bunny"))
+  const int size = static_cast<int>(options.Sizes.front());
+  window->SetSize(size, size);
+  window->Render();
+  window->WaitForCompletion();
+  const long long baseline = ProcessStatusBytes("VmRSS");
+  const std::string& scene = options.Scenes.front();
+  if (scene == "bunny")
   {
     const std::string bunny = splatexample::BunnyFile();
-    if (vtkSplatPLYReader::CanReadFile(bunny.c_str()))
-    {
-      // The bunny has holes (its base): no backface setting.
-      rows += MeasureScene(window,
-        SurfaceScene("bunny", false, [&]() { return BunnySurfels(bunny); }, options), options,
-        csv);
-    }
-    else
-    {
-      std::cerr << "splat_bench: bunny skipped: " << bunny << " is absent or unreadable\n";
-    }
+    MeasureOneCase(window,
+      SurfaceScene("bunny", [&]() { return BunnySurfels(bunny); }, options), options, csv,
+      baseline);
   }
-  if (wants("sphere"))
+  else if (scene == "sphere")
   {
-    for (long long n : options.Points)
-    {
-      rows += MeasureScene(window,
-        SurfaceScene(
-          "sphere", true, [n]() { return UnitSphere(static_cast<vtkIdType>(n)); }, options),
-        options, csv);
-    }
+    const auto n = static_cast<vtkIdType>(options.Points.front());
+    MeasureOneCase(window, SurfaceScene("sphere", [n]() { return UnitSphere(n); }, options),
+      options, csv, baseline);
   }
-  if (wants("mri"))
+  else if (scene == "mri")
   {
-    if (vtkSmartPointer<vtkImageData> head = splatexample::MriHead(options.MriShrink))
+    vtkSmartPointer<vtkImageData> head = splatexample::MriHead(options.MriShrink);
+    if (!head)
     {
-      rows += MeasureScene(window,
-        VolumeScene("mri", head, splatexample::MriProperty(),
-          [&]() { return splatexample::ResampledVolume{ head, splatexample::MriProperty() }; },
-          [&](vtkRenderer* renderer) { splatexample::PlaceMriCamera(renderer, head); }, true,
-          options),
-        options, csv);
+      throw std::runtime_error("cannot read " + splatexample::MriFile());
     }
-    else
-    {
-      std::cerr << "splat_bench: mri skipped: " << splatexample::MriFile()
-                << " is absent (Debian package mricron-data)\n";
-    }
+    MeasureOneCase(window,
+      VolumeScene("mri", head, splatexample::MriProperty(),
+        [&]() { return splatexample::ResampledVolume{ head, splatexample::MriProperty() }; },
+        [&](vtkRenderer* renderer) { splatexample::PlaceMriCamera(renderer, head); }, options),
+      options, csv, baseline);
   }
-  if (wants("gaussians"))
+  else if (scene == "gaussians")
   {
     vtkSmartPointer<vtkPolyData> kernels =
       splatexample::RandomGaussians(static_cast<vtkIdType>(options.Kernels));
@@ -483,24 +508,22 @@ int Run(const Options& options)
       return splatexample::ResampleMixture(
         splatexample::MixtureOf(kernels, property), static_cast<int>(options.Grid));
     };
-    // Not vtkGPUVolumeRayCastMapper: VTK 9.1's draws the RGBA grid (dependent components) nearly
-    // transparent (see splatexample::ResampleMixture).
-    rows += MeasureScene(window,
-      VolumeScene("gaussians", kernels, property, resample, splatexample::PlaceGaussiansCamera,
-        false, options),
-      options, csv);
+    MeasureOneCase(window,
+      VolumeScene(
+        "gaussians", kernels, property, resample, splatexample::PlaceGaussiansCamera, options),
+      options, csv, baseline);
   }
-  if (wants("3dgs"))
+  else if (scene == "3dgs")
   {
     vtkSmartPointer<vtkPolyData> capture =
       splatexample::SyntheticCapture(static_cast<vtkIdType>(options.Kernels), 3);
     // The kernels' own colors and peak opacities: the transfer functions are not used.
     vtkNew<vtkVolumeProperty> property;
-    rows += MeasureScene(window,
-      VolumeScene("3dgs", capture, property, {}, splatexample::PlaceCaptureCamera, false, options),
-      options, csv);
+    MeasureOneCase(window,
+      VolumeScene("3dgs", capture, property, {}, splatexample::PlaceCaptureCamera, options),
+      options, csv, baseline);
   }
-  if (wants("vdb"))
+  else if (scene == "vdb")
   {
     const std::string file =
       vtksys::SystemTools::GetFilenamePath(vtksys::SystemTools::CollapseFullPath(options.Output)) +
@@ -519,7 +542,7 @@ int Run(const Options& options)
     {
       throw std::runtime_error("vtkOpenVDBReader could not read " + file);
     }
-    rows += MeasureScene(window,
+    MeasureOneCase(window,
       VolumeScene("vdb", kernels, cloud.Property,
         [&]() { return splatexample::AxisAlignedGrid(dense, cloud.Property); },
         [&cloud](vtkRenderer* renderer)
@@ -527,9 +550,152 @@ int Run(const Options& options)
           cloud.PlaceCamera(renderer->GetActiveCamera());
           renderer->ResetCameraClippingRange();
         },
-        true, options),
-      options, csv);
+        options),
+      options, csv, baseline);
   }
+  return EXIT_SUCCESS;
+}
+
+// Splits a CSV row (no quoting: the bench's fields hold no commas).
+std::vector<std::string> CsvFields(const std::string& row)
+{
+  std::vector<std::string> fields;
+  std::istringstream stream(row);
+  std::string field;
+  while (std::getline(stream, field, ','))
+  {
+    fields.push_back(field);
+  }
+  if (!row.empty() && row.back() == ',')
+  {
+    fields.emplace_back();
+  }
+  return fields;
+}
+
+// Runs this program again with `arguments` and waits for it; returns its exit status (-1 when it
+// could not start or was killed).
+int RunSelf(const std::vector<std::string>& arguments)
+{
+  const std::string self = vtksys::SystemTools::GetRealPath("/proc/self/exe");
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(self.c_str()));
+  for (const std::string& argument : arguments)
+  {
+    argv.push_back(const_cast<char*>(argument.c_str()));
+  }
+  argv.push_back(nullptr);
+  pid_t child = 0;
+  if (posix_spawn(&child, self.c_str(), nullptr, nullptr, argv.data(), environ) != 0)
+  {
+    return -1;
+  }
+  int status = 0;
+  if (waitpid(child, &status, 0) != child || !WIFEXITED(status))
+  {
+    return -1;
+  }
+  return WEXITSTATUS(status);
+}
+
+// Runs every case in a fresh process of its own (this program with --case), so that each row's
+// memory is the case's alone, and writes the rows with the peer's time ratio filled in: a
+// scene's rows at a size once its peer has run. `arguments` is the command line, to which each
+// case's scene, size, point count, case and output are appended (later options win).
+int RunCases(const Options& options, const std::vector<std::string>& arguments)
+{
+  splatexample::MakeFolder(vtksys::SystemTools::GetFilenamePath(options.Output));
+  splatexample::MakeFolder(options.ImageDir);
+  std::ofstream csv(options.Output);
+  if (!csv)
+  {
+    throw std::runtime_error("cannot write '" + options.Output + "'");
+  }
+  // The required columns first, then the culling counts, the memory per splat, the ratio to
+  // the peer and the backend that drew.
+  const char* const header =
+    "scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb,"
+    "rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat,peer_ratio,"
+    "drawn_by\n";
+  std::cout << header << std::flush;
+  csv << header << std::flush;
+
+  const std::string caseOutput = options.Output + ".case";
+  int rows = 0;
+  for (const std::string scene : { "bunny", "sphere", "mri", "gaussians", "3dgs", "vdb" })
+  {
+    if (!Chosen(options.Scenes, scene))
+    {
+      continue;
+    }
+    if (scene == "bunny" && !vtkSplatPLYReader::CanReadFile(splatexample::BunnyFile().c_str()))
+    {
+      std::cerr << "splat_bench: bunny skipped: " << splatexample::BunnyFile()
+                << " is absent or unreadable\n";
+      continue;
+    }
+    if (scene == "mri" && !vtksys::SystemTools::FileExists(splatexample::MriFile()))
+    {
+      std::cerr << "splat_bench: mri skipped: " << splatexample::MriFile()
+                << " is absent (Debian package mricron-data)\n";
+      continue;
+    }
+    const std::vector<MapperKind> kinds = SceneKinds(scene, options);
+    const std::string peer = ScenePeer(scene);
+    // Only the sphere's point count varies; the others take theirs from --kernels or the data.
+    const std::vector<long long> points =
+      scene == "sphere" ? options.Points : std::vector<long long>{ options.Points.front() };
+    for (long long n : points)
+    {
+      for (long long size : options.Sizes)
+      {
+        std::vector<std::vector<std::string>> results;
+        double peerMilliseconds = 0.0;
+        for (std::size_t k = 0; k < kinds.size(); ++k)
+        {
+          std::vector<std::string> caseArguments = arguments;
+          caseArguments.insert(caseArguments.end(),
+            { "--scenes", scene, "--points", std::to_string(n), "--sizes", std::to_string(size),
+              "--case", std::to_string(k), "--output", caseOutput });
+          vtksys::SystemTools::RemoveFile(caseOutput);
+          const int status = RunSelf(caseArguments);
+          std::ifstream row(caseOutput);
+          std::string line;
+          if (status != 0 || !std::getline(row, line))
+          {
+            std::cerr << "splat_bench: " << scene << " " << kinds[k].Class << " ("
+                      << kinds[k].Backend << ", " << kinds[k].Setting
+                      << ") failed: exit status " << status << "\n";
+            continue;
+          }
+          results.push_back(CsvFields(line));
+          if (kinds[k].Name == peer)
+          {
+            peerMilliseconds = std::stod(results.back()[7]);
+          }
+        }
+        for (std::vector<std::string>& fields : results)
+        {
+          const double ms = std::stod(fields[7]);
+          if (peerMilliseconds > 0.0 && ms > 0.0)
+          {
+            std::ostringstream ratio;
+            ratio << std::fixed << std::setprecision(3) << peerMilliseconds / ms;
+            fields[16] = ratio.str();
+          }
+          std::string row;
+          for (std::size_t f = 0; f < fields.size(); ++f)
+          {
+            row += (f > 0 ? "," : "") + fields[f];
+          }
+          std::cout << row << "\n" << std::flush;
+          csv << row << "\n" << std::flush;
+          ++rows;
+        }
+      }
+    }
+  }
+  vtksys::SystemTools::RemoveFile(caseOutput);
   std::cerr << "splat_bench: " << rows << " rows; CSV written to "
             << vtksys::SystemTools::CollapseFullPath(options.Output) << "\n";
   return rows > 0 ? EXIT_SUCCESS : EXIT_FAILURE;
@@ -538,5 +704,11 @@ int Run(const Options& options)
 
 int main(int argc, char* argv[])
 {
-  return splatexample::RunProgram("splat_bench", [&] { return Run(ParseCommandLine(argc, argv)); });
+  return splatexample::RunProgram("splat_bench",
+    [&]
+    {
+      const Options options = ParseCommandLine(argc, argv);
+      return options.Case >= 0 ? RunOneCase(options)
+                               : RunCases(options, std::vector<std::string>(argv + 1, argv + argc));
+    });
 }

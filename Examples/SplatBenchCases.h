@@ -30,15 +30,10 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include <sys/resource.h> // getrusage
-#include <unistd.h>       // sysconf
-
-#ifdef __GLIBC__
-#include <malloc.h> // malloc_trim
-#endif
 
 namespace splatbench
 {
@@ -58,6 +53,7 @@ struct Options
   double Budget = 10.0;
   std::string Output = "output/bench/bench.csv";
   std::string ImageDir;
+  int Case = -1; // --case: run only this case of the one scene and size, in this process
 };
 
 struct MapperKind
@@ -85,43 +81,27 @@ struct Stage
 struct Scene
 {
   std::string Name;
-  bool Closed = false; // closed and outward-oriented: the backface setting applies
   std::vector<MapperKind> Kinds;
-  std::string Peer; // the MapperKind::Name whose time the peer_ratio column divides
   std::function<Stage(const MapperKind&)> Make;
   std::function<void(vtkRenderer*, const Stage&)> Place;
   int Frames = 0; // at most this many timed frames per case (0: --frames)
 };
 
-inline double PeakResidentMegabytes()
+// A memory field of /proc/self/status in bytes: "VmRSS" (resident now) or "VmHWM" (the peak
+// resident set of this process image: a fresh one per case, see RunCases). -1 where it cannot be
+// read (not Linux).
+inline long long ProcessStatusBytes(const std::string& field)
 {
-  rusage usage;
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0; // kilobytes on Linux
-}
-
-// The process's current resident set size in bytes: the second field of /proc/self/statm, in
-// pages. -1 where it cannot be read (not Linux).
-inline long long CurrentResidentBytes()
-{
-  std::ifstream statm("/proc/self/statm");
-  long long sizePages = 0;
-  long long residentPages = 0;
-  if (!(statm >> sizePages >> residentPages))
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
   {
-    return -1;
+    if (line.compare(0, field.size() + 1, field + ":") == 0)
+    {
+      return std::stoll(line.substr(field.size() + 1)) * 1024; // in kB
+    }
   }
-  return residentPages * static_cast<long long>(sysconf(_SC_PAGESIZE));
-}
-
-// Hands the heap's free memory back to the system, so the resident set is the memory in use:
-// without it, what an earlier case freed stays resident (glibc keeps freed heap pages and raises
-// its mmap threshold after large frees) and the next case reuses it without growing the RSS.
-inline void ReleaseFreeHeapMemory()
-{
-#ifdef __GLIBC__
-  malloc_trim(0);
-#endif
+  return -1;
 }
 
 // Median milliseconds per frame after a warm-up frame (surfel or kernel build, buffer upload,
@@ -168,8 +148,8 @@ struct CaseResult
   // rendered, frustum_culled, backface_culled, negligible, skipped (see the usage)
   std::array<std::string, 5> Counts;
   std::string DrawnBy; // the splat mappers' GetLastBackend
-  long long ResidentGrowth = 0; // bytes; see MeasureCase
-  bool HasResidentGrowth = false;
+  long long PeakResident = -1; // bytes; see MeasureCase
+  long long ResidentGrowth = -1;
 };
 
 // The splat mappers' statistics of the last frame, in the columns rendered .. skipped (see the
@@ -205,90 +185,70 @@ inline void CollectCounts(vtkProp3D* prop, CaseResult& result)
   }
 }
 
-// Makes one case's prop (scene.Make), renders it in `window` and returns what it measured; the
-// case's prop, mapper and (for surface scenes) data are released on return. The points are the
-// input's, or vtkVolumeSplatMapper's kernels (its lists, transparent voxels left out).
+// Makes one case's prop (scene.Make), renders it in `window` and returns what it measured. The
+// points are the input's, or vtkVolumeSplatMapper's kernels (its lists, transparent voxels left
+// out).
 //
-// Memory per splat: the current resident set size (/proc/self/statm) is read twice, once
-// before the case's data and mapper are built and once after its timed frames, while they are
-// all still alive; the difference is what the case holds (points, normals and radii, the
-// mapper's surfel arrays and frame buffers, or vtkPointGaussianMapper's buffers and, on Mesa's
-// llvmpipe, its driver-side copies), and bytes_per_splat is that difference divided by the
-// number of points. So that both readings are the memory in use, the heap's free pages are
-// handed back (malloc_trim) before each: freed temporaries (the surfel generator's neighbor
-// search, vtkPointGaussianMapper's staging arrays) would otherwise stay resident and count. The
-// previous case is released before the first reading, and the window has already been rendered
-// once, empty, at the case's size (its own buffers are not the case's). It is the growth at the
-// end of the case, not a peak: transient allocations freed before the last frame are not in
-// it. Shared one-time costs (shader compilation, the driver's first-use allocations) land on the
-// first case that triggers them. At small point counts the per-pixel buffers (the rasterizer's
-// fragments at the case's image size) dominate. Volume scenes make their data once, before
-// their cases: there the growth is the mapper's (kernel lists, buffers, textures) alone.
+// Memory: this process runs this one case (RunCases starts a fresh process per case), so its
+// peak resident set (VmHWM) after the timed frames is the case's peak, transient allocations
+// included; `baselineBytes` is the resident set of the same process before the case's data was
+// made (the window already rendered once, empty, at the case's size: its own buffers are not
+// the case's). The growth (peak minus baseline) counts the data (points and arrays, or the
+// volume's kernels or image), the mapper's arrays and frame buffers, vtkPointGaussianMapper's
+// buffers and, on Mesa's llvmpipe, its driver-side copies, and the one-time costs (shader
+// compilation, the driver's first-use allocations); for the ray casters it includes the grid
+// they draw and, for gaussians, its resampling.
 inline CaseResult MeasureCase(vtkRenderWindow* window, const MapperKind& kind, const Scene& scene,
-  const Options& options, long long size)
+  const Options& options, long long size, long long baselineBytes)
 {
   vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
   CaseResult result;
   result.Kind = &kind;
-  ReleaseFreeHeapMemory();
-  const long long before = CurrentResidentBytes();
-  {
-    const Stage stage = scene.Make(kind);
-    result.Points = stage.Data->GetNumberOfPoints();
-    renderer->AddViewProp(stage.Prop);
-    scene.Place(renderer, stage);
+  const Stage stage = scene.Make(kind);
+  result.Points = stage.Data->GetNumberOfPoints();
+  renderer->AddViewProp(stage.Prop);
+  scene.Place(renderer, stage);
 
-    result.Milliseconds = MillisecondsPerFrame(window, options,
-      scene.Frames > 0 ? std::min(scene.Frames, options.Frames) : options.Frames,
-      vtkVolume::SafeDownCast(stage.Prop), result.Frames);
-    ReleaseFreeHeapMemory();
-    const long long after = CurrentResidentBytes();
-    if (before >= 0 && after >= 0)
-    {
-      result.ResidentGrowth = after - before;
-      result.HasResidentGrowth = true;
-    }
-    CollectCounts(stage.Prop, result);
-    if (!options.ImageDir.empty())
-    {
-      std::string setting = kind.Setting;
-      std::replace(setting.begin(), setting.end(), ' ', '-');
-      splatexample::WritePNG(window,
-        options.ImageDir + "/" + scene.Name + "-" + std::to_string(result.Points) + "-" +
-          std::to_string(size) + "-" + kind.Name + "-" +
-          vtksys::SystemTools::LowerCase(kind.Backend) + "-" + setting + ".png");
-    }
-    // Releases the case's graphics resources; the prop, mapper and data go with this scope.
-    renderer->RemoveAllViewProps();
+  result.Milliseconds = MillisecondsPerFrame(window, options,
+    scene.Frames > 0 ? std::min(scene.Frames, options.Frames) : options.Frames,
+    vtkVolume::SafeDownCast(stage.Prop), result.Frames);
+  result.PeakResident = ProcessStatusBytes("VmHWM");
+  if (baselineBytes >= 0 && result.PeakResident >= 0)
+  {
+    result.ResidentGrowth = result.PeakResident - baselineBytes;
   }
+  CollectCounts(stage.Prop, result);
+  if (!options.ImageDir.empty())
+  {
+    std::string setting = kind.Setting;
+    std::replace(setting.begin(), setting.end(), ' ', '-');
+    splatexample::WritePNG(window,
+      options.ImageDir + "/" + scene.Name + "-" + std::to_string(result.Points) + "-" +
+        std::to_string(size) + "-" + kind.Name + "-" +
+        vtksys::SystemTools::LowerCase(kind.Backend) + "-" + setting + ".png");
+  }
+  renderer->RemoveAllViewProps();
   return result;
 }
 
-// The CSV row of a case; `peerMilliseconds` is the peer's time at the same size (0: not
-// measured).
-inline std::string CsvRow(const std::string& scene, long long size, const CaseResult& r,
-  double peerMilliseconds)
+// The CSV row of a case, its peer_ratio empty (RunCases fills it in once the peer has run).
+inline std::string CsvRow(const std::string& scene, long long size, const CaseResult& r)
 {
   const MapperKind& kind = *r.Kind;
   std::ostringstream row;
   row << scene << "," << kind.Class << "," << kind.Backend << "," << kind.Setting << ","
       << r.Points << "," << size << "," << size << "," << std::fixed << std::setprecision(2)
       << r.Milliseconds << "," << std::setprecision(0) << r.Points / (r.Milliseconds * 1e-3)
-      << "," << std::setprecision(1) << PeakResidentMegabytes() << ",";
+      << "," << std::setprecision(1) << r.PeakResident / (1024.0 * 1024.0) << ",";
   for (const std::string& count : r.Counts)
   {
     row << count << ",";
   }
-  if (r.HasResidentGrowth && r.Points > 0)
+  if (r.ResidentGrowth >= 0 && r.Points > 0)
   {
     row << std::setprecision(1) << static_cast<double>(r.ResidentGrowth) / r.Points;
   }
-  row << ",";
-  if (peerMilliseconds > 0.0 && r.Milliseconds > 0.0)
-  {
-    row << std::setprecision(3) << peerMilliseconds / r.Milliseconds;
-  }
-  row << "," << r.DrawnBy << "\n";
+  row << ",," << r.DrawnBy << "\n";
   return row.str();
 }
 
@@ -323,9 +283,10 @@ inline std::string Summary(const std::string& scene, long long size, const CaseR
               << r.Counts[4];
     }
   }
-  if (r.HasResidentGrowth)
+  if (r.ResidentGrowth >= 0)
   {
-    summary << "; RSS +" << std::setprecision(1) << r.ResidentGrowth / (1024.0 * 1024.0) << " MB";
+    summary << "; peak RSS " << std::setprecision(1) << r.PeakResident / (1024.0 * 1024.0)
+            << " MB, +" << r.ResidentGrowth / (1024.0 * 1024.0) << " MB";
     if (r.Points > 0)
     {
       summary << " (" << static_cast<double>(r.ResidentGrowth) / r.Points << " B/splat)";
@@ -334,46 +295,22 @@ inline std::string Summary(const std::string& scene, long long size, const CaseR
   return summary.str();
 }
 
-// Renders one scene at every size with every case into `window` and emits a CSV row per case,
-// each size's rows once its peer has run (for the ratio); returns the number of rows.
-inline int MeasureScene(
-  vtkRenderWindow* window, const Scene& scene, const Options& options, std::ostream& csv)
+// Runs case options.Case of `scene` at the one size of options.Sizes in `window` and writes its
+// CSV row to `csv`; `baselineBytes` is this process's resident set before the scene's data.
+inline void MeasureOneCase(vtkRenderWindow* window, const Scene& scene, const Options& options,
+  std::ostream& csv, long long baselineBytes)
 {
-  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
-  int rows = 0;
-  for (long long size : options.Sizes)
+  if (options.Case >= static_cast<int>(scene.Kinds.size()))
   {
-    // The window's own buffers at this size, before any case's memory is measured.
-    renderer->RemoveAllViewProps();
-    window->SetSize(static_cast<int>(size), static_cast<int>(size));
-    window->Render();
-    window->WaitForCompletion();
-    std::vector<CaseResult> results;
-    double peerMilliseconds = 0.0;
-    for (const MapperKind& kind : scene.Kinds)
-    {
-      if (kind.ClosedOnly && !scene.Closed)
-      {
-        continue;
-      }
-      std::cerr << "splat_bench: " << scene.Name << ", " << size << "x" << size << ", "
-                << kind.Class << " (" << kind.Backend << ", " << kind.Setting << ") ...\n";
-      results.push_back(MeasureCase(window, kind, scene, options, size));
-      std::cerr << Summary(scene.Name, size, results.back()) << "\n";
-      if (kind.Name == scene.Peer)
-      {
-        peerMilliseconds = results.back().Milliseconds;
-      }
-    }
-    for (const CaseResult& r : results)
-    {
-      const std::string row = CsvRow(scene.Name, size, r, peerMilliseconds);
-      std::cout << row << std::flush;
-      csv << row << std::flush;
-      ++rows;
-    }
+    throw std::runtime_error(scene.Name + " has no case " + std::to_string(options.Case));
   }
-  return rows;
+  const MapperKind& kind = scene.Kinds[options.Case];
+  const long long size = options.Sizes.front();
+  std::cerr << "splat_bench: " << scene.Name << ", " << size << "x" << size << ", " << kind.Class
+            << " (" << kind.Backend << ", " << kind.Setting << ") ...\n";
+  const CaseResult result = MeasureCase(window, kind, scene, options, size, baselineBytes);
+  std::cerr << Summary(scene.Name, size, result) << "\n";
+  csv << CsvRow(scene.Name, size, result) << std::flush;
 }
 }
 

@@ -2,6 +2,7 @@
 #include "vtkOpenGLImageDepthCompositor.h"
 
 #include "SplatOpenGLUtilities.h"
+#include "vtkAbstractMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -144,6 +145,24 @@ void vtkOpenGLImageDepthCompositor::ReleaseGraphicsResources(vtkWindow* window)
     this->Quad->ReleaseGraphicsResources(window);
     this->Quad.reset();
   }
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenGLImageDepthCompositor::MoveGraphicsResources(
+  vtkRenderer* renderer, vtkAbstractMapper* mapper)
+{
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (window == this->ResourceWindow)
+  {
+    return;
+  }
+  if (vtkOpenGLRenderWindow* previous = this->ResourceWindow)
+  {
+    previous->PushContext();
+    mapper->ReleaseGraphicsResources(previous);
+    previous->PopContext();
+  }
+  this->ResourceWindow = window;
 }
 
 //------------------------------------------------------------------------------

@@ -16,12 +16,15 @@
 #include "SplatRenderingModule.h" // For export macro
 #include "vtkNew.h"              // For vtkNew
 #include "vtkObject.h"
+#include "vtkWeakPointer.h" // For the window holding the resources
 
 #include <cstdint> // For std::uint8_t
 #include <memory>  // For std::unique_ptr
 #include <vector>  // For the depth read-back
 
+class vtkAbstractMapper;
 class vtkOpenGLQuadHelper;
+class vtkOpenGLRenderWindow;
 class vtkRenderer;
 class vtkTextureObject;
 class vtkWindow;
@@ -68,6 +71,15 @@ public:
    */
   void ReleaseGraphicsResources(vtkWindow* window);
 
+  /**
+   * Called by `mapper` (which holds this compositor) before it draws into `renderer`: where the
+   * renderer's window is not the one whose OpenGL context holds the mapper's graphics resources
+   * (a mapper shared by renderers of two windows), the mapper releases them in that window's
+   * context first, so that it never draws with one context's objects in another. VTK's own
+   * mappers do the same through their resource callbacks, whose header VTK 9.1 keeps private.
+   */
+  void MoveGraphicsResources(vtkRenderer* renderer, vtkAbstractMapper* mapper);
+
 protected:
   vtkOpenGLImageDepthCompositor();
   ~vtkOpenGLImageDepthCompositor() override;
@@ -75,6 +87,7 @@ protected:
   vtkNew<vtkTextureObject> ColorTexture;
   vtkNew<vtkTextureObject> DepthTexture;
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+  vtkWeakPointer<vtkOpenGLRenderWindow> ResourceWindow; // see MoveGraphicsResources
 
 private:
   vtkOpenGLImageDepthCompositor(const vtkOpenGLImageDepthCompositor&) = delete;

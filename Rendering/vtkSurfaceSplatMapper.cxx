@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -46,8 +47,13 @@ struct vtkSurfaceSplatMapper::SurfelArrays
   std::vector<float> Colors;
   std::vector<float> Opacities; // empty when every opacity is 1
   std::vector<float> Curvatures; // differential points' lambda_u, lambda_v; empty for surfels
-  std::vector<vtkIdType> PointIds; // the input point of each surfel, for picking
+  // The input point of each surfel, for picking; empty when none was skipped (surfel i is
+  // point i), which saves 8 bytes per point on most inputs.
+  std::vector<vtkIdType> PointIds;
   bool ColorsFromScalars = false;
+  // The property the colors and opacities were taken from: actors sharing the mapper have
+  // their own (compared only, never dereferenced).
+  const vtkProperty* Property = nullptr;
   vtkTimeStamp BuildTime;
 
   vtkSurfaceSplatRasterizer::Surfels View() const
@@ -128,6 +134,20 @@ bool IsFinite(const double* v, int n)
     }
   }
   return true;
+}
+
+// v scaled to unit length, or zero where it has no direction (zero or not finite). Scaled by
+// its largest component first: the squares of components below 1e-154 underflow and those
+// above 1e154 overflow, which would make a valid normal or axis look zero or infinite.
+glm::dvec3 Unit(const glm::dvec3& v)
+{
+  const double largest = std::max({ std::abs(v.x), std::abs(v.y), std::abs(v.z) });
+  if (!(largest > 0.0 && std::isfinite(largest)))
+  {
+    return glm::dvec3(0.0);
+  }
+  const glm::dvec3 scaled = v / largest;
+  return scaled / glm::length(scaled);
 }
 }
 
@@ -299,7 +319,7 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
         ? this->LookupTable->GetMTime()
         : vtkMTimeType(0) });
   SurfelArrays& s = *this->Surfels;
-  if (s.BuildTime.GetMTime() > changed)
+  if (s.BuildTime.GetMTime() > changed && s.Property == property)
   {
     return true;
   }
@@ -385,6 +405,10 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
     v->reserve(3 * n);
   }
   s.Positions.reserve(3 * n);
+  // Reserved, not grown: growing copies the array into one up to twice as large, a peak of up
+  // to three times its size.
+  s.Opacities.reserve(n);
+  s.Curvatures.reserve(differential ? 2 * n : 0);
   vtkIdType skipped = 0;
   for (vtkIdType i = 0; i < n; ++i)
   {
@@ -405,10 +429,10 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
         curvatures->GetTuple(i, curvature);
         valid = valid && extent[0] > 0.0 && extent[1] > 0.0 && IsFinite(extent, 2) &&
           IsFinite(curvature, 2);
-        t0 *= extent[0] / glm::length(t0);
-        t1 *= extent[1] / glm::length(t1);
+        t0 = Unit(t0) * extent[0];
+        t1 = Unit(t1) * extent[1];
       }
-      const glm::dvec3 cross = glm::cross(t0, t1);
+      const glm::dvec3 cross = glm::cross(Unit(t0), Unit(t1));
       valid = valid && IsFinite(&t0.x, 3) && IsFinite(&t1.x, 3) && glm::length(cross) > 0.0;
       if (normals)
       {
@@ -423,22 +447,27 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
     {
       normals->GetTuple(i, &normal.x);
     }
-    const double length = glm::length(normal);
-    valid = valid && IsFinite(&normal.x, 3) && length > 0.0 && std::isfinite(length);
+    const glm::dvec3 unitNormal = Unit(normal);
+    valid = valid && IsFinite(&normal.x, 3) && unitNormal != glm::dvec3(0.0);
     if (valid && !axis0)
     {
       const double radius = radii ? radii->GetComponent(i, 0) : this->Radius;
       valid = radius > 0.0 && std::isfinite(radius);
-      splat::TangentFrame(normal / length, t0, t1);
+      splat::TangentFrame(unitNormal, t0, t1);
       t0 *= radius;
       t1 *= radius;
     }
     if (!valid)
     {
-      ++skipped;
+      if (skipped++ == 0)
+      {
+        // The first skipped point: the ids stop being the surfels' indices.
+        s.PointIds.resize(s.Normals.size() / 3);
+        std::iota(s.PointIds.begin(), s.PointIds.end(), vtkIdType(0));
+        s.PointIds.reserve(n);
+      }
       continue;
     }
-    const glm::dvec3 unitNormal = normal / length;
     unsigned char rgba[4] = { 0, 0, 0, 255 };
     if (scalarColors)
     {
@@ -449,7 +478,10 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
     const double opacity = actorOpacity * (rgba[3] / 255.0) *
       (std::isnan(pointOpacity) ? 1.0 : std::min(std::max(pointOpacity, 0.0), 1.0));
     s.Opacities.push_back(static_cast<float>(opacity));
-    s.PointIds.push_back(i);
+    if (skipped > 0)
+    {
+      s.PointIds.push_back(i);
+    }
     if (differential)
     {
       s.Curvatures.push_back(static_cast<float>(curvature[0]));
@@ -468,7 +500,8 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
   }
   if (!translucent)
   {
-    s.Opacities.clear();
+    // Freed, not only cleared: an opaque input keeps no opacities.
+    std::vector<float>().swap(s.Opacities);
   }
   this->NumberOfSkippedPoints = skipped;
   if (skipped > 0)
@@ -478,6 +511,7 @@ bool vtkSurfaceSplatMapper::UpdateSurfels(vtkActor* actor)
                        "curvature, zero normal, non-positive radius or extent, or parallel "
                        "axes.");
   }
+  s.Property = property;
   s.BuildTime.Modified();
   return true;
 }
@@ -512,6 +546,7 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
       : static_cast<splat::KernelFilter>(this->FilterMode));
   this->Rasterizer->SetBackfaceCulling(property->GetBackfaceCulling());
 
+  this->Compositor->MoveGraphicsResources(ren, this);
   // Picking draws with OpenGL whatever the backend: the selector reads the framebuffer.
   if (vtkHardwareSelector* selector = ren->GetSelector())
   {
@@ -564,7 +599,14 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
 void vtkSurfaceSplatMapper::RenderSelection(
   vtkRenderer* ren, vtkActor* actor, vtkHardwareSelector* selector)
 {
-  const std::vector<vtkIdType>& pointIds = this->Surfels->PointIds;
+  std::vector<vtkIdType> identity;
+  if (this->Surfels->PointIds.empty())
+  {
+    identity.resize(this->Surfels->Normals.size() / 3);
+    std::iota(identity.begin(), identity.end(), vtkIdType(0));
+  }
+  const std::vector<vtkIdType>& pointIds =
+    identity.empty() ? this->Surfels->PointIds : identity;
   selector->BeginRenderProp();
   if (selector->GetCurrentPass() == vtkHardwareSelector::COMPOSITE_INDEX_PASS)
   {

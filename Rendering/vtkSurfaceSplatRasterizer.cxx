@@ -575,6 +575,9 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   // their grid do.
   const double footprintScale = differential && !rectangles ? std::sqrt(2.0) : 1.0;
   const float amplitudeScale = differential && !rectangles ? 2.0f : 1.0f;
+  // How far a splat reaches along an axis, in units of the axis: its cutoff ellipse (beta =
+  // |u|^2 < cutoff in axis units) or its rectangle.
+  const double depthReach = footprintScale * std::max(std::sqrt(cutoff), 1.0);
   std::vector<DifferentialSplat>& differentials = this->Internal->DifferentialSplats;
   differentials.resize(differential ? surfels.Count : 0);
   // Minified splats are summed per pixel where the exact kernel is the EWA one of an opaque
@@ -622,12 +625,15 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         const float* axis1 = surfels.Axes1 + 3 * i;
         const glm::dvec3 p =
           axisToEye * glm::dvec3(position[0], position[1], position[2]) + eyeTranslation;
-        if (!(-p.z >= nearDepth && -p.z <= farDepth))
+        const glm::dvec3 a0 = axisToEye * glm::dvec3(axis0[0], axis0[1], axis0[2]);
+        const glm::dvec3 a1 = axisToEye * glm::dvec3(axis1[0], axis1[1], axis1[2]);
+        // Culled when the whole splat lies outside the depth range: a large one reaches past
+        // the near or far plane from a center outside it (its fragments are clipped there).
+        const double depthExtent = depthReach * (std::abs(a0.z) + std::abs(a1.z));
+        if (!(-p.z + depthExtent >= nearDepth && -p.z - depthExtent <= farDepth))
         {
           continue;
         }
-        const glm::dvec3 a0 = axisToEye * glm::dvec3(axis0[0], axis0[1], axis0[2]);
-        const glm::dvec3 a1 = axisToEye * glm::dvec3(axis1[0], axis1[1], axis1[2]);
         splat::SurfelProjection projection;
         if (!splat::ProjectSurfel(
               eyeToClip, viewport, p, footprintScale * a0, footprintScale * a1, projection))
@@ -651,9 +657,10 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         const glm::dmat2 warped = splat::SurfelBasisVariance * (J * glm::transpose(J));
         if (minify && LargestEigenvalue(warped) <= this->MinifiedVariance)
         {
+          // Below a pixel, it is drawn whole where its center is in the depth range, or not.
           const glm::dvec2 cell = glm::floor(projection.Center);
-          if (cell.x >= -reach && cell.x < width + reach && cell.y >= -reach &&
-            cell.y < height + reach)
+          if (-p.z >= nearDepth && -p.z <= farDepth && cell.x >= -reach &&
+            cell.x < width + reach && cell.y >= -reach && cell.y < height + reach)
           {
             const int band = (static_cast<int>(cell.y) + reach) / BandHeight;
             minified[(i / ChunkSize) * cellBands + band].push_back(
@@ -767,6 +774,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
 
   // 2. Splatting, band by band.
   const float cutoffF = static_cast<float>(cutoff);
+  const float nearClip = static_cast<float>(nearDepth);
+  const float farClip = static_cast<float>(farDepth);
   // The opaque scene's window depths as linear eye depths, for the per-fragment test.
   const std::vector<float> sceneEyeDepths = this->SceneDepths.size() == pixels
     ? splat::EyeDepthsOfWindowDepths(frame.ClipToEye, this->SceneDepths)
@@ -829,9 +838,9 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                 continue; // rounding at the span's ends
               }
               const float z = numerator / denominator;
-              if (sceneDepths && z > sceneDepths[pixel])
+              if (!(z >= nearClip && z <= farClip) || (sceneDepths && z > sceneDepths[pixel]))
               {
-                continue; // hidden by opaque geometry already in the scene
+                continue; // clipped, or hidden by opaque geometry already in the scene
               }
               const float* normal = s.Normal;
               float predicted[3];

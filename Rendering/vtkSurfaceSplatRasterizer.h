@@ -205,9 +205,9 @@ public:
   ///@{
   /**
    * What the last frame did: surfels splatted, of which minified (accumulated per pixel, see
-   * MinifiedVariance); surfels left out because they lie outside the
-   * view frustum (behind the eye, outside the near/far range, footprint outside the viewport),
-   * face away with BackfaceCulling on, or are edge-on (negligible weight); and pixel
+   * MinifiedVariance); surfels left out because they lie outside the view frustum (behind the
+   * eye, wholly outside the near/far range, footprint outside the viewport), face away with
+   * BackfaceCulling on, or are edge-on (negligible weight); and pixel
    * contributions written.
    */
   vtkGetMacro(SplattedCount, vtkIdType);

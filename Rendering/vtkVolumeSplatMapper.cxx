@@ -788,6 +788,7 @@ void vtkVolumeSplatMapper::Render(vtkRenderer* ren, vtkVolume* volume)
   {
     return;
   }
+  this->Compositor->MoveGraphicsResources(ren, this);
   this->LastBackend = this->SelectBackend(ren);
 
   int width, height, originX, originY;

@@ -121,8 +121,10 @@ void main()
   {
     beta = max(abs(u.x), abs(u.y)) <= 1.0 ? 0.0 : cutoff;
   }
-  // A ray that meets the plane behind the eye does not see the splat.
-  if (!(beta < cutoff) || (perspective != 0 && !(t > 0.0)))
+  // A ray that meets the plane behind the eye does not see the splat; the near and far planes
+  // clip it.
+  if (!(beta < cutoff) || (perspective != 0 && !(t > 0.0)) ||
+    !(t >= nearDepth && t <= farDepth))
   {
     discard;
   }

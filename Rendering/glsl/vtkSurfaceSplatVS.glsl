@@ -52,13 +52,18 @@ void cull()
 void main()
 {
   vec3 p = (modelToEye * vec4(position, 1.0)).xyz;
-  if (!(-p.z >= nearDepth && -p.z <= farDepth))
+  vec3 a0 = mat3(modelToEye) * axis0;
+  vec3 a1 = mat3(modelToEye) * axis1;
+  bool rectangle = differential != 0 && filterMode == 2;
+  float footprint = differential != 0 && !rectangle ? sqrt(2.0) : 1.0;
+  // Culled when the whole splat lies outside the depth range: a large one reaches past the
+  // near or far plane from a center outside it (its fragments are clipped there).
+  float reach = footprint * max(sqrt(cutoff), 1.0) * (abs(a0.z) + abs(a1.z));
+  if (!(-p.z + reach >= nearDepth && -p.z - reach <= farDepth))
   {
     cull();
     return;
   }
-  vec3 a0 = mat3(modelToEye) * axis0;
-  vec3 a1 = mat3(modelToEye) * axis1;
 
   // ProjectSurfel: center and Jacobian of the projective map, in pixels.
   vec4 c = eyeToClip * vec4(p, 1.0);
@@ -71,9 +76,7 @@ void main()
   vec2 halfSize = 0.5 * viewportSize;
   vec2 center = (ndc + 1.0) * halfSize;
   // A filtered differential point's Gaussian passes through its rectangle's corners, with the
-  // rectangle's area as its mass; unfiltered, the rectangle itself is drawn.
-  bool rectangle = differential != 0 && filterMode == 2;
-  float footprint = differential != 0 && !rectangle ? sqrt(2.0) : 1.0;
+  // rectangle's area as its mass (footprint); unfiltered, the rectangle itself is drawn.
   vec4 d0 = eyeToClip * vec4(footprint * a0, 0.0);
   vec4 d1 = eyeToClip * vec4(footprint * a1, 0.0);
   vec2 j0 = (d0.xy - ndc * d0.w) / c.w * halfSize;

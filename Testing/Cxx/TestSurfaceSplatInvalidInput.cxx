@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Bad input never crashes nor reaches the image: points with NaN/Inf positions, normals or
-// radii, zero normals and non-positive radii are skipped and counted; the rest renders, and an
-// input without normals is refused with an error instead of drawing garbage.
+// radii, zero normals and non-positive radii are skipped and counted; the rest, normals of tiny
+// and huge length included, renders, and an input without normals is refused with an error
+// instead of drawing garbage.
 #include "SplatTestUtilities.h"
 #include "vtkSurfaceSplatMapper.h"
 
 #include "vtkActor.h"
+#include "vtkDoubleArray.h"
 #include "vtkRenderer.h"
 #include "vtkTestErrorObserver.h"
 
@@ -26,6 +28,18 @@ int main(int, char*[])
   radius->SetTuple1(5, -1.0);
   radius->SetTuple1(6, inf);
   const vtkIdType bad = 7;
+  // Valid normals of tiny and huge length (in doubles: the squares of their components under-
+  // and overflow) are drawn, not skipped.
+  vtkNew<vtkDoubleArray> normals;
+  normals->DeepCopy(cloud->GetPointData()->GetNormals());
+  for (const auto& scaled : { std::make_pair(7, 1e-170), std::make_pair(8, 1e170) })
+  {
+    double n[3];
+    normals->GetTuple(scaled.first, n);
+    normals->SetTuple3(scaled.first, n[0] * scaled.second, n[1] * scaled.second,
+      n[2] * scaled.second);
+  }
+  cloud->GetPointData()->SetNormals(normals);
 
   vtkNew<vtkSurfaceSplatMapper> mapper;
   mapper->SetInputData(cloud);

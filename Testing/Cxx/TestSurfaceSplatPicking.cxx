@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Hardware picking of splats by point: vtkHardwareSelector over a splatted grid returns, at the
-// pixel where a point projects, that point's id in the input, with either backend. The input
-// starts with invalid points (skipped by the mapper), so surfel indices and point ids differ.
+// pixel where a point projects, that point's id in the input, with either backend: for an input
+// starting with invalid points (skipped by the mapper), where surfel indices and point ids
+// differ, and for one without.
 #include "SplatTestUtilities.h"
 #include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
@@ -50,42 +51,47 @@ int main(int, char*[])
   renderer->ResetCameraClippingRange();
 
   int failures = 0;
-  for (int backend : { vtkSplatBackend::CPU, vtkSplatBackend::OPENGL })
+  // With the invalid points, then the grid alone (no point skipped: surfel i is point i).
+  for (vtkPolyData* data : { input.Get(), grid.Get() })
   {
-    mapper->SetBackend(backend);
-    window->Render();
-    for (vtkIdType id : { invalid, vtkIdType(100), vtkIdType(112), vtkIdType(224) })
+    for (int backend : { vtkSplatBackend::CPU, vtkSplatBackend::OPENGL })
     {
-      double p[3];
-      input->GetPoint(id, p);
-      renderer->SetWorldPoint(p[0], p[1], p[2], 1.0);
-      renderer->WorldToDisplay();
-      const double* display = renderer->GetDisplayPoint();
-      const auto x = static_cast<unsigned int>(display[0]);
-      const auto y = static_cast<unsigned int>(display[1]);
-      vtkNew<vtkHardwareSelector> selector;
-      selector->SetRenderer(renderer);
-      selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_POINTS);
-      selector->SetArea(x, y, x, y);
-      vtkSmartPointer<vtkSelection> selection;
-      selection.TakeReference(selector->Select());
-      vtkIdType picked = -1;
-      if (selection && selection->GetNumberOfNodes() == 1)
+      mapper->SetInputData(data);
+      mapper->SetBackend(backend);
+      window->Render();
+      for (vtkIdType id : { invalid, vtkIdType(100), vtkIdType(112), vtkIdType(224) })
       {
-        vtkSelectionNode* node = selection->GetNode(0);
-        auto* ids = vtkIdTypeArray::SafeDownCast(node->GetSelectionList());
-        if (node->GetProperties()->Get(vtkSelectionNode::PROP()) == actor.Get() && ids &&
-          ids->GetNumberOfTuples() == 1)
+        double p[3];
+        data->GetPoint(id, p);
+        renderer->SetWorldPoint(p[0], p[1], p[2], 1.0);
+        renderer->WorldToDisplay();
+        const double* display = renderer->GetDisplayPoint();
+        const auto x = static_cast<unsigned int>(display[0]);
+        const auto y = static_cast<unsigned int>(display[1]);
+        vtkNew<vtkHardwareSelector> selector;
+        selector->SetRenderer(renderer);
+        selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_POINTS);
+        selector->SetArea(x, y, x, y);
+        vtkSmartPointer<vtkSelection> selection;
+        selection.TakeReference(selector->Select());
+        vtkIdType picked = -1;
+        if (selection && selection->GetNumberOfNodes() == 1)
         {
-          picked = ids->GetValue(0);
+          vtkSelectionNode* node = selection->GetNode(0);
+          auto* ids = vtkIdTypeArray::SafeDownCast(node->GetSelectionList());
+          if (node->GetProperties()->Get(vtkSelectionNode::PROP()) == actor.Get() && ids &&
+            ids->GetNumberOfTuples() == 1)
+          {
+            picked = ids->GetValue(0);
+          }
         }
-      }
-      std::printf("%s: point %lld at pixel (%u, %u) picked as %lld\n",
-        vtkSplatBackend::GetBackendAsString(backend), static_cast<long long>(id), x, y,
-        static_cast<long long>(picked));
-      if (picked != id)
-      {
-        ++failures;
+        std::printf("%s: point %lld at pixel (%u, %u) picked as %lld\n",
+          vtkSplatBackend::GetBackendAsString(backend), static_cast<long long>(id), x, y,
+          static_cast<long long>(picked));
+        if (picked != id)
+        {
+          ++failures;
+        }
       }
     }
   }
