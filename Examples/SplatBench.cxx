@@ -65,7 +65,8 @@ vtkPointGaussianMapper (opaque disks of the same radius, emissive off), and two 
 vtkVolumeSplatMapper, vtkFixedPointVolumeRayCastMapper and vtkGPUVolumeRayCastMapper, offscreen,
 and prints CSV rows:
   scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb,
-  rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat,peer_ratio,drawn_by
+  rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat,peer_ratio,drawn_by,
+  first_frame_ms
 Settings: vtkSurfaceSplatMapper runs on each backend (the CPU rasterizer, then OpenGL) as
 "default" (EWA; on the CPU minified splats summed per pixel, the default MinifiedVariance) on
 every scene and, on the sphere (closed, outward normals), also as "backface" (the actor's
@@ -73,7 +74,10 @@ BackfaceCulling on); its CPU backend also as "exact" (MinifiedVariance 0: every 
 kernel), its OpenGL backend as "approximate" (the APPROXIMATE filter mode); vtkPointGaussianMapper runs as "disk". Under a software OpenGL
 renderer (Mesa's llvmpipe) the OpenGL rows measure that renderer, not a GPU.
 Each case (row) runs in a fresh process of its own: this program again, with --case.
-ms_per_frame is the median over the timed frames after one warm-up frame; peak_rss_mb is the
+ms_per_frame is the median over the timed frames after one warm-up frame, whose time is
+first_frame_ms (kernels, lists, buffers and shaders built there); before each timed frame of a
+volume scene the camera turns by half a degree, the transfer function unchanged, so that the
+timed frames are the later frames of an interaction; peak_rss_mb is the
 peak resident memory (VmHWM) of the case's process, its data included.
 rendered .. skipped are vtkSurfaceSplatMapper's counts for the last frame (splats drawn, culled
 outside the frustum, culled as back faces, left out as negligible, input points skipped as
@@ -131,6 +135,8 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
   --backends LIST      the splat mappers' backends: cpu, opengl (default: cpu,opengl for the
                        surfaces, cpu for the volumes, whose OpenGL rows are slow under llvmpipe;
                        a list given here applies to both)
+  --orderings LIST     vtkVolumeSplatMapper's ordering modes: blended, clipped, single-axis,
+                       depth-sorted (default all)
   --frames N           at most N timed frames per case (default 10)
   --budget SECONDS     time a case's frames within this many seconds: after the first timed
                        frame, another is timed only while the elapsed time plus the last
@@ -206,6 +212,11 @@ Options ParseCommandLine(int argc, char* argv[])
       [&](const std::string& name, const std::string& value) {
         options.Backends = SplitList(name, value, { "cpu", "opengl" });
         options.VolumeBackends = options.Backends;
+      } },
+    { "--orderings",
+      [&](const std::string& name, const std::string& value) {
+        options.Orderings =
+          SplitList(name, value, { "blended", "clipped", "single-axis", "depth-sorted" });
       } },
     { "--frames", CountInto(options.Frames, 1, 100000) },
     { "--budget", CountInto(options.Budget, 0, 86400) },
@@ -323,6 +334,10 @@ std::vector<MapperKind> VolumeKinds(const Options& options)
     {
       for (int mode : splatexample::OrderingModes())
       {
+        if (!Chosen(options.Orderings, splatexample::OrderingModeName(mode)))
+        {
+          continue;
+        }
         MapperKind kind{ "splat", "vtkVolumeSplatMapper",
           vtkSplatBackend::GetBackendAsString(backend), splatexample::OrderingModeName(mode) };
         kind.SplatBackend = backend;
@@ -616,7 +631,7 @@ int RunCases(const Options& options, const std::vector<std::string>& arguments)
   const char* const header =
     "scene,mapper,backend,setting,points,width,height,ms_per_frame,splats_per_s,peak_rss_mb,"
     "rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat,peer_ratio,"
-    "drawn_by\n";
+    "drawn_by,first_frame_ms\n";
   std::cout << header << std::flush;
   csv << header << std::flush;
 

@@ -12,6 +12,7 @@
 #include "vtkVolumeSplatMapper.h"
 
 #include "vtkActor.h"
+#include "vtkCamera.h"
 #include "vtkDataSet.h"
 #include "vtkProp3D.h"
 #include "vtkRenderWindow.h"
@@ -49,6 +50,7 @@ struct Options
   std::vector<std::string> Mappers = { "splat", "pointgaussian", "fixedpoint", "gpuraycast" };
   std::vector<std::string> Backends = { "cpu", "opengl" };
   std::vector<std::string> VolumeBackends = { "cpu" }; // --backends sets both
+  std::vector<std::string> Orderings = { "blended", "clipped", "single-axis", "depth-sorted" };
   int Frames = 10;
   double Budget = 10.0;
   std::string Output = "output/bench/bench.csv";
@@ -107,15 +109,19 @@ inline long long ProcessStatusBytes(const std::string& field)
 // Median milliseconds per frame after a warm-up frame (surfel or kernel build, buffer upload,
 // shader compilation): at least one frame, at most `maxFrames`, and after the first only while
 // the elapsed time plus the last frame's stays within the budget (so that slow cases, such as
-// vtkPointGaussianMapper on millions of points under llvmpipe, keep to it). A volume is marked
-// modified before each frame, as in TestVolumeSplatCrossRenderer. `frames` gets the number of
-// timed frames.
+// vtkPointGaussianMapper on millions of points under llvmpipe, keep to it). Before each timed
+// frame of a volume, the volume is marked modified, as in TestVolumeSplatCrossRenderer, and the
+// camera turns by half a degree (the transfer function unchanged): a later frame of an
+// interaction. `frames` gets the number of timed frames and `firstMilliseconds` the warm-up
+// frame's time.
 inline double MillisecondsPerFrame(vtkRenderWindow* window, const Options& options, int maxFrames,
-  vtkVolume* volume, int& frames)
+  vtkVolume* volume, int& frames, double& firstMilliseconds)
 {
   using Clock = std::chrono::steady_clock;
+  const auto firstStart = Clock::now();
   window->Render();
   window->WaitForCompletion();
+  firstMilliseconds = std::chrono::duration<double, std::milli>(Clock::now() - firstStart).count();
   std::vector<double> ms;
   const auto start = Clock::now();
   while (static_cast<int>(ms.size()) < maxFrames &&
@@ -126,6 +132,7 @@ inline double MillisecondsPerFrame(vtkRenderWindow* window, const Options& optio
     if (volume)
     {
       volume->Modified();
+      window->GetRenderers()->GetFirstRenderer()->GetActiveCamera()->Azimuth(0.5);
     }
     const auto frameStart = Clock::now();
     window->Render();
@@ -143,6 +150,7 @@ struct CaseResult
   const MapperKind* Kind = nullptr;
   vtkIdType Points = 0;
   double Milliseconds = 0.0;
+  double FirstMilliseconds = 0.0; // the warm-up frame
   int Frames = 0;
   bool HasCounts = false; // the splat mapper's statistics of the last frame
   // rendered, frustum_culled, backface_culled, negligible, skipped (see the usage)
@@ -211,7 +219,7 @@ inline CaseResult MeasureCase(vtkRenderWindow* window, const MapperKind& kind, c
 
   result.Milliseconds = MillisecondsPerFrame(window, options,
     scene.Frames > 0 ? std::min(scene.Frames, options.Frames) : options.Frames,
-    vtkVolume::SafeDownCast(stage.Prop), result.Frames);
+    vtkVolume::SafeDownCast(stage.Prop), result.Frames, result.FirstMilliseconds);
   result.PeakResident = ProcessStatusBytes("VmHWM");
   if (baselineBytes >= 0 && result.PeakResident >= 0)
   {
@@ -248,7 +256,7 @@ inline std::string CsvRow(const std::string& scene, long long size, const CaseRe
   {
     row << std::setprecision(1) << static_cast<double>(r.ResidentGrowth) / r.Points;
   }
-  row << ",," << r.DrawnBy << "\n";
+  row << ",," << r.DrawnBy << "," << std::setprecision(2) << r.FirstMilliseconds << "\n";
   return row.str();
 }
 
@@ -262,7 +270,8 @@ inline std::string Summary(const std::string& scene, long long size, const CaseR
   summary << "splat_bench: " << scene << " " << r.Points << (volume ? " kernels " : " points ")
           << size << "x" << size << " " << kind.Class << " " << kind.Backend << " "
           << kind.Setting << ": " << std::fixed << std::setprecision(2) << r.Milliseconds
-          << " ms/frame (median of " << r.Frames << "), " << std::setprecision(0)
+          << " ms/frame (median of " << r.Frames << "; first frame " << r.FirstMilliseconds
+          << " ms), " << std::setprecision(0)
           << r.Points / (r.Milliseconds * 1e-3) << (volume ? " kernels/s" : " splats/s");
   if (!r.DrawnBy.empty())
   {

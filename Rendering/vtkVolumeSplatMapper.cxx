@@ -407,6 +407,7 @@ bool vtkVolumeSplatMapper::UpdateKernels(vtkVolumeProperty* property)
     return true;
   }
   k.Clear();
+  ++this->NumberOfKernelBuilds;
   this->NumberOfKernels = this->NumberOfTransparentKernels = this->NumberOfInvalidKernels = 0;
   bool ok = false;
   if (input->GetNumberOfPoints() == 0)
@@ -942,6 +943,7 @@ void vtkVolumeSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfKernels: " << this->NumberOfKernels << "\n";
   os << indent << "NumberOfTransparentKernels: " << this->NumberOfTransparentKernels << "\n";
   os << indent << "NumberOfInvalidKernels: " << this->NumberOfInvalidKernels << "\n";
+  os << indent << "NumberOfKernelBuilds: " << this->NumberOfKernelBuilds << "\n";
   os << indent << "LastRenderTimeInMilliseconds: " << this->LastRenderTimeInMilliseconds << "\n";
   os << indent << "Rasterizer:\n";
   this->Rasterizer->PrintSelf(os, indent.GetNextIndent());

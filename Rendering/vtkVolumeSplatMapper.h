@@ -235,10 +235,13 @@ public:
   ///@{
   /**
    * Since the mapper was made: comparison sorts (point-set list builds and per-frame depth
-   * sorts; image data needs none) and kernel-list builds.
+   * sorts; image data needs none), kernel-list builds and kernel builds (classification,
+   * gradients: when the input, the volume property or the kernel settings change, never for a
+   * moved camera alone).
    */
   vtkIdType GetNumberOfSorts();
   vtkIdType GetNumberOfListBuilds();
+  vtkGetMacro(NumberOfKernelBuilds, vtkIdType);
   ///@}
 
   /**
@@ -291,6 +294,7 @@ protected:
   vtkIdType NumberOfKernels = 0;
   vtkIdType NumberOfTransparentKernels = 0;
   vtkIdType NumberOfInvalidKernels = 0;
+  vtkIdType NumberOfKernelBuilds = 0;
   double LastRenderTimeInMilliseconds = 0.0;
 
   vtkNew<vtkVolumeSplatRasterizer> Rasterizer; // also the lists and settings of both backends

@@ -124,6 +124,7 @@ public:
     , PeakOpacity(peakOpacity)
     , Stride(width + Lanes)
     , Spans(rowEnd - rowBegin + 1, glm::ivec2(std::numeric_limits<int>::max(), -1))
+    , OpenPixels((width + Lanes - 1) / Lanes, 0)
   {
     const std::size_t size = static_cast<std::size_t>(rowEnd - rowBegin + 1) * this->Stride;
     for (auto& sum : this->Sums)
@@ -138,9 +139,36 @@ public:
     }
   }
 
-  /// Adds kernel s to the current layer.
+  /// Starts a traversal of a list into `buffer`: a band pixel is open while it integrates, that
+  /// is below the termination opacity and, when weights is not null, with the traversal's sign.
+  void Begin(const float* weights, bool ascending, const glm::vec4* buffer)
+  {
+    std::fill(this->OpenPixels.begin(), this->OpenPixels.end(), 0);
+    for (int y = this->RowBegin; y <= this->RowEnd; ++y)
+    {
+      const std::size_t pixelRow = static_cast<std::size_t>(y) * this->Width;
+      for (int x = 0; x < this->Width; ++x)
+      {
+        const std::size_t p = pixelRow + x;
+        this->OpenPixels[x / Lanes] += IsOpen(weights, ascending, buffer, p);
+      }
+    }
+  }
+
+  /// Adds kernel s to the current layer, unless every pixel of the columns it covers has stopped
+  /// integrating or does not take this traversal (early termination per tile of the band's rows
+  /// by Lanes columns): Flush would leave its sums unused.
   SPLAT_VECTOR_CLONES void Add(const ScreenKernel& s)
   {
+    bool open = false;
+    for (int tile = s.X0 / Lanes; tile <= s.X1 / Lanes && !open; ++tile)
+    {
+      open = this->OpenPixels[tile] > 0;
+    }
+    if (!open)
+    {
+      return;
+    }
     const int y0 = std::max(s.Y0, this->RowBegin);
     const int y1 = std::min(s.Y1, this->RowEnd);
     const float xx = s.ConicXX;
@@ -201,23 +229,29 @@ public:
           sum[q] = 0.0f;
         }
         const std::size_t p = pixelRow + x;
-        glm::vec4& c = buffer[p];
-        if (!(depth > 0.0f) || c.a >= TerminationAlpha ||
-          (weights && !(ascending ? weights[p] > 0.0f : weights[p] < 0.0f)))
+        if (!(depth > 0.0f) || !IsOpen(weights, ascending, buffer, p))
         {
           continue;
         }
+        glm::vec4& c = buffer[p];
         // 1 - exp(-t) loses digits only where the layer's opacity is far below an 8-bit step.
         const float alpha = this->PeakOpacity ? std::min(depth, MaximumPeakOpacity)
                                               : 1.0f - splat::NegativeExponential(depth);
         const float coverage = (1.0f - c.a) * alpha;
         c += glm::vec4((coverage / depth) * color, coverage);
+        this->OpenPixels[x / Lanes] -= c.a >= TerminationAlpha;
       }
       span = glm::ivec2(std::numeric_limits<int>::max(), -1);
     }
   }
 
 private:
+  static bool IsOpen(const float* weights, bool ascending, const glm::vec4* buffer, std::size_t p)
+  {
+    return buffer[p].a < TerminationAlpha &&
+      (!weights || (ascending ? weights[p] > 0.0f : weights[p] < 0.0f));
+  }
+
   int Width;
   int RowBegin;
   int RowEnd;
@@ -233,6 +267,7 @@ private:
   // peak model), in separate arrays so that the row loop vectorizes.
   std::array<std::vector<float>, 4> Sums;
   std::vector<glm::ivec2> Spans; // per band row: the columns the layer touched
+  std::vector<int> OpenPixels;    // per tile of Lanes columns: its open pixels (see Begin)
 };
 }
 
@@ -556,15 +591,10 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
 
   // 3. The lists the frame needs, built if missing, and binned into bands in list order; a
   // kernel joins a band's bin when its box overlaps the band's pixels that use the list.
-  // The layer of kernel k in list `list`: its sheet along the list's axis for image data, itself
-  // otherwise.
+  // For image data, the sheet of kernel k along list `list`'s axis: its compositing layer.
   const glm::ivec3 dimensions = input.GridDimensions;
   auto layerOf = [&input, dimensions](int list, vtkIdType k) -> vtkIdType
   {
-    if (!input.GridIds || list == DepthList)
-    {
-      return k;
-    }
     const vtkIdType id = input.GridIds[k];
     const vtkIdType nx = dimensions.x, ny = dimensions.y;
     return list == 0 ? id % nx : (list == 1 ? (id / nx) % ny : id / (nx * ny));
@@ -607,49 +637,63 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
       }
       return any;
     };
-    // In parallel over chunks of the list: each chunk counts its kernels per band, the counts
-    // become each chunk's start in each band's bin, and each chunk fills its places, so the
-    // bins are in list order whatever the number of threads.
+    // A counting sort of the kept kernels by band and slot, in parallel over chunks: each chunk
+    // counts its kernels per band and slot, the counts become each chunk's start in each band's
+    // bin, and each chunk fills its places, so the bins do not depend on the number of threads.
+    // Point sets go through the list in chunks, one slot per band. Grids go through the kernels
+    // in memory order (the X and Y lists would gather them from all over memory), a slot per
+    // sheet: the bins come out sheet by sheet, in id order within a sheet.
+    const bool grid = input.GridIds && list != DepthList;
     const std::vector<vtkIdType>& order = this->Lists[list];
+    const vtkIdType slots = grid ? (list == 0 ? dimensions.x
+                                              : (list == 1 ? dimensions.y : dimensions.z))
+                                 : 1;
+    const vtkIdType keys = bands * slots;
+    const vtkIdType total = grid ? static_cast<vtkIdType>(kernels.size())
+                                 : static_cast<vtkIdType>(order.size());
     const vtkIdType chunkSize = 1 << 16;
-    const vtkIdType chunks = (static_cast<vtkIdType>(order.size()) + chunkSize - 1) / chunkSize;
+    const vtkIdType chunks = (total + chunkSize - 1) / chunkSize;
     auto forEachKept = [&](vtkIdType chunk, auto&& visit)
     {
-      const vtkIdType end = std::min(static_cast<vtkIdType>(order.size()), (chunk + 1) * chunkSize);
+      const vtkIdType end = std::min(total, (chunk + 1) * chunkSize);
       for (vtkIdType j = chunk * chunkSize; j < end; ++j)
       {
-        if (kernels[order[j]].Skip == Kept)
+        const vtkIdType k = grid ? j : order[j];
+        if (kernels[k].Skip == Kept)
         {
-          visit(order[j]);
+          visit(k, grid ? layerOf(list, k) : 0);
         }
       }
     };
-    std::vector<vtkIdType> starts(static_cast<std::size_t>(chunks) * bands, 0);
+    std::vector<vtkIdType> starts(static_cast<std::size_t>(chunks * keys), 0);
     std::vector<vtkIdType> projected(chunks, 0);
     vtkSMPTools::For(0, chunks,
       [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
       {
         for (vtkIdType c = chunkBegin; c < chunkEnd; ++c)
         {
-          vtkIdType* count = starts.data() + c * bands;
+          vtkIdType* count = starts.data() + c * keys;
           forEachKept(c,
-            [&](vtkIdType k)
-            { projected[c] += forEachBand(kernels[k], [count](int b) { ++count[b]; }); });
+            [&](vtkIdType k, vtkIdType slot)
+            {
+              projected[c] +=
+                forEachBand(kernels[k], [count, slot, slots](int b) { ++count[b * slots + slot]; });
+            });
         }
       });
     this->Projected[list] = std::accumulate(projected.begin(), projected.end(), vtkIdType(0));
     std::vector<vtkIdType>& offsets = this->Internal->Offsets[list];
     offsets.assign(bands + 1, 0);
-    for (int b = 0; b < bands; ++b)
+    vtkIdType next = 0;
+    for (vtkIdType key = 0; key < keys; ++key)
     {
-      vtkIdType next = offsets[b];
       for (vtkIdType c = 0; c < chunks; ++c)
       {
-        const vtkIdType count = starts[c * bands + b];
-        starts[c * bands + b] = next;
+        const vtkIdType count = starts[c * keys + key];
+        starts[c * keys + key] = next;
         next += count;
       }
-      offsets[b + 1] = next;
+      offsets[key / slots + 1] = next;
     }
     std::vector<BinnedKernel>& bin = this->Internal->Bins[list];
     bin.resize(offsets[bands]);
@@ -658,12 +702,13 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
       {
         for (vtkIdType c = chunkBegin; c < chunkEnd; ++c)
         {
-          vtkIdType* next = starts.data() + c * bands;
+          vtkIdType* place = starts.data() + c * keys;
           forEachKept(c,
-            [&](vtkIdType k)
+            [&](vtkIdType k, vtkIdType slot)
             {
-              const BinnedKernel binned{ kernels[k], layerOf(list, k) };
-              forEachBand(kernels[k], [&](int b) { bin[next[b]++] = binned; });
+              const BinnedKernel binned{ kernels[k], grid ? slot : k };
+              forEachBand(
+                kernels[k], [&](int b) { bin[place[b * slots + slot]++] = binned; });
             });
         }
       });
@@ -706,6 +751,7 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
             {
               continue;
             }
+            compositor.Begin(weights, ascending, buffer);
             const vtkIdType count = offsets[b + 1] - offsets[b];
             vtkIdType layer = -1;
             for (vtkIdType n = 0; n < count; ++n)

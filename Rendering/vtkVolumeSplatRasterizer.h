@@ -23,10 +23,12 @@
  * A frame has four steps: per-pixel list weights; setup of every kernel, parallel over kernels
  * (footprint, bounding box, skip reasons; spherical-harmonic colors, evaluated again only when
  * the view point or the degree changed); binning into 16-row bands in list order, for each list
- * some pixel needs, keeping only the kernels that overlap the band's pixels of that list (in
- * parallel over chunks of the list, into copies of the kernels that the compositing reads in
- * sequence); and compositing, parallel over bands. A band's pixels see their kernels in list
- * order whatever the number of threads, so the image does not depend on it.
+ * some pixel needs, keeping only the kernels that overlap the band's pixels of that list (a
+ * counting sort by band and layer in parallel over fixed chunks, into copies of the kernels that
+ * the compositing reads in sequence; for image data over the kernels in memory order, sheet by
+ * sheet, rather than gathered along the X and Y lists); and compositing, parallel over bands. A
+ * band's pixels see their kernels in list order whatever the number of threads, so the image
+ * does not depend on it.
  *
  * Compositing goes layer by layer: for image data a layer is one sheet of the grid along the
  * list's axis (kernels side by side, whose order within the sheet is arbitrary), otherwise one
@@ -37,8 +39,9 @@
  * evaluated over whole groups of 8 columns of their box with the cutoff ellipse as a mask, so
  * that the loop vectorizes (splat::NegativeExponential; an AVX2/FMA clone where GCC dispatches on
  * the CPU). Pixels stop integrating once their accumulated opacity reaches 1 - 1/512 (early ray
- * termination), and a kernel adds nothing to pixels where its center lies behind the opaque
- * scene's depth.
+ * termination); a kernel whose columns of the band (in tiles of 8) hold no pixel that still
+ * integrates along that list and direction is not evaluated at all. A kernel adds nothing to
+ * pixels where its center lies behind the opaque scene's depth.
  *
  * Kernels are not validated here: the caller passes finite data only.
  *

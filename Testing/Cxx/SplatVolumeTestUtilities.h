@@ -18,6 +18,7 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace splattest
@@ -141,42 +142,78 @@ inline vtkSmartPointer<vtkVolumeProperty> ExtinctionProperty(
 }
 
 /**
- * The exact image of the blob of GaussianBlob() over a black background: per pixel ray, the
- * optical depth is peak sigma sqrt(2 pi) exp(-d^2 / (2 sigma^2)) with d the ray's distance to
- * the center, and the color rgb (1 - exp(-depth)). RGB floats in [0, 1], rows from the bottom.
+ * The exact image of the blob of GaussianBlob() over a black background: per pixel ray, from its
+ * point on the near plane on (perspective or parallel projections alike), the optical depth is
+ * peak sigma sqrt(2 pi) exp(-d^2 / (2 sigma^2)) (1 + erf(t / (sigma sqrt 2))) / 2, with d the
+ * ray's distance to the center and t the distance along the ray from the near plane to the
+ * point closest to the center (1 when the whole blob is in front), and the color
+ * rgb (1 - exp(-depth)). RGB floats in [0, 1], rows from the bottom.
  */
 inline std::vector<double> BlobImage(
   vtkRenderer* renderer, double sigma, double peak, const double rgb[3])
 {
   int* size = renderer->GetRenderWindow()->GetSize();
   std::vector<double> image(3 * size[0] * size[1]);
-  double eye[3];
-  renderer->GetActiveCamera()->GetPosition(eye);
   for (int y = 0; y < size[1]; ++y)
     for (int x = 0; x < size[0]; ++x)
     {
-      renderer->SetDisplayPoint(x + 0.5, y + 0.5, 0.0);
-      renderer->DisplayToWorld();
-      double p[4];
-      renderer->GetWorldPoint(p);
-      double d[3] = { p[0] / p[3] - eye[0], p[1] / p[3] - eye[1], p[2] / p[3] - eye[2] };
+      double ends[2][3];
+      for (int end = 0; end < 2; ++end)
+      {
+        renderer->SetDisplayPoint(x + 0.5, y + 0.5, end);
+        renderer->DisplayToWorld();
+        double p[4];
+        renderer->GetWorldPoint(p);
+        for (int c = 0; c < 3; ++c)
+        {
+          ends[end][c] = p[c] / p[3];
+        }
+      }
+      const double* o = ends[0];
+      double d[3] = { ends[1][0] - o[0], ends[1][1] - o[1], ends[1][2] - o[2] };
       vtkMath::Normalize(d);
-      // Distance from the center (the origin) to the ray eye + t d.
-      const double t = -vtkMath::Dot(eye, d);
+      // The point of the ray o + t d closest to the center (the origin).
+      const double t = -vtkMath::Dot(o, d);
       double closest[3];
       for (int c = 0; c < 3; ++c)
       {
-        closest[c] = eye[c] + t * d[c];
+        closest[c] = o[c] + t * d[c];
       }
       const double r2 = vtkMath::Dot(closest, closest);
-      const double depth =
-        peak * sigma * std::sqrt(2.0 * vtkMath::Pi()) * std::exp(-r2 / (2.0 * sigma * sigma));
+      const double depth = peak * sigma * std::sqrt(2.0 * vtkMath::Pi()) *
+        std::exp(-r2 / (2.0 * sigma * sigma)) * 0.5 *
+        (1.0 + std::erf(t / (sigma * std::sqrt(2.0))));
       for (int c = 0; c < 3; ++c)
       {
         image[3 * (y * size[0] + x) + c] = rgb[c] * -std::expm1(-depth);
       }
     }
   return image;
+}
+
+/**
+ * The largest difference between horizontally or vertically neighboring pixels of an RGB image
+ * of width `width`, over all channels: a seam shows as a jump above the image's own gradient.
+ */
+inline double LargestNeighborJump(const std::vector<double>& rgb, int width)
+{
+  const int height = static_cast<int>(rgb.size() / (3 * width));
+  double largest = 0.0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c)
+      {
+        const double v = rgb[3 * (y * width + x) + c];
+        if (x + 1 < width)
+        {
+          largest = std::max(largest, std::abs(rgb[3 * (y * width + x + 1) + c] - v));
+        }
+        if (y + 1 < height)
+        {
+          largest = std::max(largest, std::abs(rgb[3 * ((y + 1) * width + x) + c] - v));
+        }
+      }
+  return largest;
 }
 
 /// The image's RGB as floats in [0, 1].

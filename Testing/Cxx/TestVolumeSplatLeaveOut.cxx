@@ -104,6 +104,19 @@ int main(int, char*[])
     window->Render();
   }
   Check(mapper->GetNumberOfSorts() == 0, "image data is never sorted");
+  // The camera moves, the transfer function stays: no data-only work again.
+  const vtkIdType kernelBuilds = mapper->GetNumberOfKernelBuilds();
+  const vtkIdType listBuilds = mapper->GetNumberOfListBuilds();
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    camera->Azimuth(3.0);
+    camera->Elevation(2.0);
+    camera->OrthogonalizeViewUp();
+    window->Render();
+  }
+  Check(kernelBuilds == 2 && mapper->GetNumberOfKernelBuilds() == kernelBuilds &&
+      mapper->GetNumberOfListBuilds() == listBuilds,
+    "a moved camera rebuilds neither kernels nor lists");
   mapper->SetOrderingModeToDepthSorted();
   window->Render();
   window->Render();

@@ -15,11 +15,12 @@
 #include "vtkRegressionTestImage.h"
 
 #include <cstdio>
+#include <string>
 
 namespace splattest
 {
-/// The largest ratio of boundary jump to the jump elsewhere over the camera path.
-inline double SweepSeams(vtkVolumeSplatMapper* mapper, vtkRenderWindow* window, int frames)
+/// The seams scene drawn by `mapper` in a new renderer of `window`, which keeps it.
+inline vtkRenderer* AddSeamsScene(vtkVolumeSplatMapper* mapper, vtkRenderWindow* window)
 {
   const int n = 10;
   vtkNew<vtkImageData> image;
@@ -50,9 +51,76 @@ inline double SweepSeams(vtkVolumeSplatMapper* mapper, vtkRenderWindow* window, 
   vtkNew<vtkRenderer> renderer;
   splattest::AddVolume(renderer, mapper, property);
   window->AddRenderer(renderer);
+  return renderer;
+}
+
+/// For the image in `window` of the seams scene in `renderer`: the ratio of the mean jump
+/// between horizontal neighbors whose rays have different dominant axes to the mean jump
+/// elsewhere in the volume; 0 where no such boundary crosses the volume's image. Perspective
+/// cameras only (the rays run from the eye).
+inline double SeamRatio(vtkRenderer* renderer, vtkRenderWindow* window, const char* label)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  int* size = window->GetSize();
+  auto rgb = ToRGB(Capture(window));
+  // The dominant axis of each pixel's ray.
+  std::vector<int> axis(size[0] * size[1]);
+  double eye[3];
+  camera->GetPosition(eye);
+  for (int y = 0; y < size[1]; ++y)
+    for (int x = 0; x < size[0]; ++x)
+    {
+      renderer->SetDisplayPoint(x + 0.5, y + 0.5, 0.0);
+      renderer->DisplayToWorld();
+      double p[4];
+      renderer->GetWorldPoint(p);
+      const double d[3] = { std::abs(p[0] / p[3] - eye[0]), std::abs(p[1] / p[3] - eye[1]),
+        std::abs(p[2] / p[3] - eye[2]) };
+      axis[y * size[0] + x] = d[0] >= d[1] && d[0] >= d[2] ? 0 : (d[1] >= d[2] ? 1 : 2);
+    }
+  double boundary = 0.0, elsewhere = 0.0;
+  int boundaryCount = 0, elsewhereCount = 0;
+  for (int y = 0; y < size[1]; ++y)
+    for (int x = 3; x + 4 < size[0]; ++x)
+    {
+      const int p = y * size[0] + x;
+      double jump = 0.0, brightness = 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        jump += std::abs(rgb[3 * (p + 1) + c] - rgb[3 * p + c]) / 3.0;
+        brightness += rgb[3 * p + c] + rgb[3 * (p + 1) + c];
+      }
+      if (brightness < 0.3)
+      {
+        continue; // outside the volume
+      }
+      if (axis[p] != axis[p + 1])
+      {
+        boundary += jump;
+        ++boundaryCount;
+      }
+      else if (axis[p - 3] == axis[p + 4])
+      {
+        elsewhere += jump;
+        ++elsewhereCount;
+      }
+    }
+  if (boundaryCount == 0 || elsewhereCount == 0)
+  {
+    return 0.0;
+  }
+  const double ratio = (boundary / boundaryCount) / (elsewhere / elsewhereCount);
+  std::printf("%s: jump across the boundary %.4f (%d pairs), elsewhere %.4f, ratio %.2f\n",
+    label, boundary / boundaryCount, boundaryCount, elsewhere / elsewhereCount, ratio);
+  return ratio;
+}
+
+/// The largest ratio of boundary jump to the jump elsewhere over the camera path.
+inline double SweepSeams(vtkVolumeSplatMapper* mapper, vtkRenderWindow* window, int frames)
+{
+  vtkRenderer* renderer = AddSeamsScene(mapper, window);
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetViewAngle(60.0);
-  int* size = window->GetSize();
   double worst = 0.0;
   for (int frame = 0; frame < frames; ++frame)
   {
@@ -64,56 +132,8 @@ inline double SweepSeams(vtkVolumeSplatMapper* mapper, vtkRenderWindow* window, 
     camera->SetViewUp(0.0, 1.0, 0.0);
     renderer->ResetCameraClippingRange();
     window->Render();
-    auto rgb = ToRGB(Capture(window));
-    // The dominant axis of each pixel's ray.
-    std::vector<int> axis(size[0] * size[1]);
-    double eye[3];
-    camera->GetPosition(eye);
-    for (int y = 0; y < size[1]; ++y)
-      for (int x = 0; x < size[0]; ++x)
-      {
-        renderer->SetDisplayPoint(x + 0.5, y + 0.5, 0.0);
-        renderer->DisplayToWorld();
-        double p[4];
-        renderer->GetWorldPoint(p);
-        const double d[3] = { std::abs(p[0] / p[3] - eye[0]), std::abs(p[1] / p[3] - eye[1]),
-          std::abs(p[2] / p[3] - eye[2]) };
-        axis[y * size[0] + x] = d[0] >= d[1] && d[0] >= d[2] ? 0 : (d[1] >= d[2] ? 1 : 2);
-      }
-    double boundary = 0.0, elsewhere = 0.0;
-    int boundaryCount = 0, elsewhereCount = 0;
-    for (int y = 0; y < size[1]; ++y)
-      for (int x = 3; x + 4 < size[0]; ++x)
-      {
-        const int p = y * size[0] + x;
-        double jump = 0.0, brightness = 0.0;
-        for (int c = 0; c < 3; ++c)
-        {
-          jump += std::abs(rgb[3 * (p + 1) + c] - rgb[3 * p + c]) / 3.0;
-          brightness += rgb[3 * p + c] + rgb[3 * (p + 1) + c];
-        }
-        if (brightness < 0.3)
-        {
-          continue; // outside the volume
-        }
-        if (axis[p] != axis[p + 1])
-        {
-          boundary += jump;
-          ++boundaryCount;
-        }
-        else if (axis[p - 3] == axis[p + 4])
-        {
-          elsewhere += jump;
-          ++elsewhereCount;
-        }
-      }
-    if (boundaryCount > 0 && elsewhereCount > 0)
-    {
-      const double ratio = (boundary / boundaryCount) / (elsewhere / elsewhereCount);
-      std::printf("frame %d: jump across the boundary %.4f (%d pairs), elsewhere %.4f, ratio %.2f\n",
-        frame, boundary / boundaryCount, boundaryCount, elsewhere / elsewhereCount, ratio);
-      worst = std::max(worst, ratio);
-    }
+    const std::string label = "frame " + std::to_string(frame);
+    worst = std::max(worst, SeamRatio(renderer, window, label.c_str()));
   }
   return worst;
 }
