@@ -581,10 +581,10 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<DifferentialSplat>& differentials = this->Internal->DifferentialSplats;
   differentials.resize(differential ? surfels.Count : 0);
   // Minified splats are summed per pixel where the exact kernel is the EWA one of an opaque
-  // surfel. A pixel gathers the cells whose mean center can lie within the cutoff's reach of
-  // its center, sqrt(2 c (1 + spread)) pixels for the widest spread: `reach` cells on each
-  // side, and as many outside the viewport. (Cells one further can reach the cutoff's rim,
-  // where the kernel is below e^-c, only with their mean center at their edge: left out.)
+  // surfel. A pixel gathers the cells within the cutoff's reach of its center for the widest
+  // spread, sqrt(2 c (1 + spread)) pixels: `reach` cells on each side, and as many outside the
+  // viewport. A cell one further would contribute only with its mean center well off its own
+  // center (a sparsely filled cell); it is left out, a truncation the tests bound.
   const bool minify = this->MinifiedVariance > 0.0 && filter == splat::KernelFilter::EWA &&
     !differential && !translucent;
   Internals::CellGrid& grid = this->Internal->Grid;
