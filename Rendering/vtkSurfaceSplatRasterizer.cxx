@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 vtkStandardNewMacro(vtkSurfaceSplatRasterizer);
@@ -169,7 +170,10 @@ struct vtkSurfaceSplatRasterizer::PixelCell
 
 struct vtkSurfaceSplatRasterizer::Internals
 {
-  std::vector<ScreenSplat> Splats;
+  // Per surfel, written only for those drawn with their exact kernel: left uninitialized, so
+  // that the pages of minified and culled surfels are never touched (100 bytes each).
+  std::unique_ptr<ScreenSplat[]> Splats;
+  std::size_t SplatCapacity = 0;
   std::vector<std::uint8_t> CullReasons; // per surfel: why it is left out, or Kept, or Minified
   std::vector<DifferentialSplat> DifferentialSplats; // parallel to Splats; empty for surfels
   std::vector<vtkIdType> BandOffsets; // per band, into BandSplats
@@ -600,8 +604,12 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   minified.resize(minify ? chunks * cellBands : 0);
 
   // 1. Setup, in eye space, chunk by chunk.
-  std::vector<ScreenSplat>& splats = this->Internal->Splats;
-  splats.resize(surfels.Count);
+  if (this->Internal->SplatCapacity < surfels.Count)
+  {
+    this->Internal->Splats.reset(new ScreenSplat[surfels.Count]);
+    this->Internal->SplatCapacity = surfels.Count;
+  }
+  ScreenSplat* const splats = this->Internal->Splats.get();
   std::vector<std::uint8_t>& reasons = this->Internal->CullReasons;
   reasons.resize(surfels.Count);
   const glm::dmat3 axisToEye(modelToEye);
@@ -733,7 +741,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<vtkIdType>& bandSplats = this->Internal->BandSplats;
   offsets.assign(bands + 1, 0);
   vtkIdType culled[5] = { 0, 0, 0, 0, 0 };
-  for (std::size_t i = 0; i < splats.size(); ++i)
+  for (std::size_t i = 0; i < surfels.Count; ++i)
   {
     ++culled[reasons[i]];
     if (reasons[i] != Kept)
@@ -758,7 +766,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   bandSplats.resize(offsets[bands]);
   {
     std::vector<vtkIdType> fill(offsets.begin(), offsets.end() - 1);
-    for (std::size_t i = 0; i < splats.size(); ++i)
+    for (std::size_t i = 0; i < surfels.Count; ++i)
     {
       if (reasons[i] != Kept)
       {
