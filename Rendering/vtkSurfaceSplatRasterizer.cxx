@@ -1160,7 +1160,9 @@ void vtkSurfaceSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CoverageThreshold: " << this->CoverageThreshold << "\n";
   os << indent << "Filter: " << static_cast<int>(this->Filter) << "\n";
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
+  os << indent << "MinifiedVariance: " << this->MinifiedVariance << "\n";
   os << indent << "SplattedCount: " << this->SplattedCount << "\n";
+  os << indent << "MinifiedCount: " << this->MinifiedCount << "\n";
   os << indent << "FrustumCulledCount: " << this->FrustumCulledCount << "\n";
   os << indent << "BackfaceCulledCount: " << this->BackfaceCulledCount << "\n";
   os << indent << "NegligibleCount: " << this->NegligibleCount << "\n";
