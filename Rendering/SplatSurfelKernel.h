@@ -181,6 +181,21 @@ inline double Foreshortening(const SurfelProjection& projection)
   return squaredAxes > 0.0 ? 2.0 * std::abs(glm::determinant(J)) / squaredAxes : 0.0;
 }
 
+/// The largest eigenvalue of a symmetric 2x2 matrix.
+inline double LargestEigenvalue(const glm::dmat2& m)
+{
+  const double mean = 0.5 * (m[0][0] + m[1][1]);
+  const double half = 0.5 * (m[0][0] - m[1][1]);
+  return mean + std::sqrt(half * half + m[0][1] * m[0][1]);
+}
+
+/// J Vr J^T: the object-space basis function warped to pixels, in pixels^2.
+inline glm::dmat2 WarpedBasisVariance(const SurfelProjection& projection)
+{
+  const glm::dmat2& J = projection.Jacobian;
+  return SurfelBasisVariance * (J * glm::transpose(J));
+}
+
 /**
  * Builds the kernel of eq. (6) from a projection. With the EWA filter the low-pass term +I keeps
  * M invertible (|M| >= 1) even for an edge-on surfel whose J is singular; its amplitude |J| then
@@ -194,7 +209,7 @@ inline ResamplingKernel MakeResamplingKernel(
   const glm::dmat2& J = projection.Jacobian;
   k.Center = projection.Center;
   k.Cutoff = cutoff;
-  const glm::dmat2 warped = SurfelBasisVariance * (J * glm::transpose(J));
+  const glm::dmat2 warped = WarpedBasisVariance(projection);
   switch (filter)
   {
     case KernelFilter::EWA:
@@ -203,10 +218,7 @@ inline ResamplingKernel MakeResamplingKernel(
     case KernelFilter::Circular:
     {
       // The larger eigenvalue of the EWA covariance: the squared major semi-axis.
-      const glm::dmat2 ewa = warped + glm::dmat2(1.0);
-      const double mean = 0.5 * (ewa[0][0] + ewa[1][1]);
-      const double half = 0.5 * (ewa[0][0] - ewa[1][1]);
-      k.Covariance = glm::dmat2(mean + std::sqrt(half * half + ewa[0][1] * ewa[0][1]));
+      k.Covariance = glm::dmat2(LargestEigenvalue(warped + glm::dmat2(1.0)));
       break;
     }
     case KernelFilter::Unfiltered:

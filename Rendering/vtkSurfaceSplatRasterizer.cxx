@@ -34,14 +34,6 @@ constexpr float OpaqueAlpha = 1.0f - 1e-4f;
 // sums them in input order whatever the number of threads.
 constexpr vtkIdType ChunkSize = 16384;
 
-// The largest eigenvalue of a symmetric 2x2 matrix.
-double LargestEigenvalue(const glm::dmat2& m)
-{
-  const double mean = 0.5 * (m[0][0] + m[1][1]);
-  const double half = 0.5 * (m[0][0] - m[1][1]);
-  return mean + std::sqrt(half * half + m[0][1] * m[0][1]);
-}
-
 // The pixels a rectangle p +- a0 +- a1 covers, from its corners' exact projections; false when
 // it covers none or a corner is not in front of the eye.
 bool RectanglePixels(const glm::dmat4& eyeToClip, const glm::dvec2& viewport, const glm::dvec3& p,
@@ -157,15 +149,16 @@ struct vtkSurfaceSplatRasterizer::MinifiedSplat
 };
 
 // One surface's minified splats whose centers lie in one pixel: their weighted sums and, once
-// the pixel is complete, the weighted means of their centers relative to the pixel's center,
-// of their depth slopes and of their spreads.
+// the pixel is complete, the weighted means of their centers relative to the pixel's center
+// and of their depth slopes, and the inverse of the gather's variance, 1 + their mean spread.
+// (While the pixel is summed, Offset, DepthSlope and InverseVariance hold mass-weighted sums.)
 struct vtkSurfaceSplatRasterizer::PixelCell
 {
   Fragment Sum;
   float Threshold;
   float Offset[2];
   float DepthSlope[2];
-  float Spread;
+  float InverseVariance;
 };
 
 struct vtkSurfaceSplatRasterizer::Internals
@@ -374,7 +367,7 @@ inline void Deposit(PixelCell* cells, std::uint8_t& count, int layers, const Min
     cell.Sum = NewFragment(m.Depth, m.Mass, m.Normal, m.Color, m.Alpha);
     cell.Threshold = m.Threshold;
     cell.Offset[0] = cell.Offset[1] = cell.DepthSlope[0] = cell.DepthSlope[1] = 0.0f;
-    cell.Spread = 0.0f;
+    cell.InverseVariance = 0.0f;
   }
   else
   {
@@ -384,14 +377,14 @@ inline void Deposit(PixelCell* cells, std::uint8_t& count, int layers, const Min
   cell.Offset[1] += m.Mass * offsetY;
   cell.DepthSlope[0] += m.Mass * m.DepthSlope[0];
   cell.DepthSlope[1] += m.Mass * m.DepthSlope[1];
-  cell.Spread += m.Mass * m.Spread;
+  cell.InverseVariance += m.Mass * m.Spread;
 }
 
 // A minified splat from its eye-space center p and axes a0, a1, its projection and warped basis
-// variance, its normal turned towards the viewer and its color.
+// variance, the pixel holding its center, its normal turned towards the viewer and its color.
 MinifiedSplat MakeMinifiedSplat(const glm::dvec3& p, const glm::dvec3& a0, const glm::dvec3& a1,
-  const splat::SurfelProjection& projection, const glm::dmat2& warped, const glm::dvec3& normal,
-  const float* color, double depthThreshold)
+  const splat::SurfelProjection& projection, const glm::dmat2& warped, const glm::dvec2& cell,
+  const glm::dvec3& normal, const float* color, double depthThreshold)
 {
   MinifiedSplat m;
   m.CenterX = static_cast<float>(projection.Center.x);
@@ -402,8 +395,7 @@ MinifiedSplat MakeMinifiedSplat(const glm::dvec3& p, const glm::dvec3& a0, const
   const double det = glm::determinant(J);
   const glm::dvec2 slope =
     glm::dvec2(a1.z * J[0][1] - a0.z * J[1][1], a0.z * J[1][0] - a1.z * J[0][0]) / det;
-  const glm::dvec2 cellCenter = glm::floor(projection.Center) + 0.5;
-  m.Depth = static_cast<float>(-p.z + glm::dot(slope, cellCenter - projection.Center));
+  m.Depth = static_cast<float>(-p.z + glm::dot(slope, cell + 0.5 - projection.Center));
   m.DepthSlope[0] = static_cast<float>(slope.x);
   m.DepthSlope[1] = static_cast<float>(slope.y);
   m.Threshold = static_cast<float>(
@@ -661,9 +653,9 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           reason = Negligible;
           continue;
         }
-        const glm::dmat2& J = projection.Jacobian;
-        const glm::dmat2 warped = splat::SurfelBasisVariance * (J * glm::transpose(J));
-        if (minify && LargestEigenvalue(warped) <= this->MinifiedVariance)
+        const glm::dmat2 warped =
+          minify ? splat::WarpedBasisVariance(projection) : glm::dmat2(0.0);
+        if (minify && splat::LargestEigenvalue(warped) <= this->MinifiedVariance)
         {
           // Below a pixel, it is drawn whole where its center is in the depth range, or not.
           const glm::dvec2 cell = glm::floor(projection.Center);
@@ -672,8 +664,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           {
             const int band = (static_cast<int>(cell.y) + reach) / BandHeight;
             minified[(i / ChunkSize) * cellBands + band].push_back(
-              MakeMinifiedSplat(p, a0, a1, projection, warped, backFacing ? -normal : normal,
-                surfels.Colors + 3 * i, depthThreshold));
+              MakeMinifiedSplat(p, a0, a1, projection, warped, cell,
+                backFacing ? -normal : normal, surfels.Colors + 3 * i, depthThreshold));
             reason = Minified;
           }
           continue;
@@ -893,7 +885,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
 void vtkSurfaceSplatRasterizer::SumMinifiedSplats(vtkIdType chunks)
 {
   // Each cell band sums its splats chunk by chunk, in input order, into the cells of the pixels
-  // holding their centers, then turns the sums of offsets, slopes and spreads into means.
+  // holding their centers, then turns the sums of offsets, slopes and spreads into what the
+  // gather reads.
   const Internals::CellGrid& grid = this->Internal->Grid;
   const std::vector<std::vector<MinifiedSplat>>& minified = this->Internal->MinifiedSplats;
   std::vector<PixelCell>& cells = this->Internal->Cells;
@@ -933,7 +926,7 @@ void vtkSurfaceSplatRasterizer::SumMinifiedSplats(vtkIdType chunks)
             c.Offset[k] /= c.Sum.Weight;
             c.DepthSlope[k] /= c.Sum.Weight;
           }
-          c.Spread /= c.Sum.Weight;
+          c.InverseVariance = 1.0f / (1.0f + c.InverseVariance / c.Sum.Weight);
         }
       }
     });
@@ -980,8 +973,7 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
                 const PixelCell& c = cells[cell * layers + j];
                 const float ox = dx + c.Offset[0];
                 const float oy = dy + c.Offset[1];
-                const float variance = 1.0f + c.Spread;
-                const float beta = 0.5f * (ox * ox + oy * oy) / variance;
+                const float beta = 0.5f * (ox * ox + oy * oy) * c.InverseVariance;
                 // The cell's plane at this pixel's center, dx, dy pixels from its own.
                 const float z = c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1];
                 if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]))
@@ -994,8 +986,8 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
                 {
                   continue;
                 }
-                const float w =
-                  static_cast<float>(splat::InverseTwoPi) * exponential(beta) / variance;
+                const float w = static_cast<float>(splat::InverseTwoPi) * exponential(beta) *
+                  c.InverseVariance;
                 if (inserted)
                 {
                   pixelFragments[i] = Scaled(c.Sum, w, z);
