@@ -68,19 +68,21 @@ and prints CSV rows:
   rendered,frustum_culled,backface_culled,negligible,skipped,bytes_per_splat,peer_ratio,drawn_by,
   first_frame_ms
 Settings: vtkSurfaceSplatMapper runs on each backend (the CPU rasterizer, then OpenGL) as
-"default" (EWA; on the CPU minified splats summed per pixel, the default MinifiedVariance) on
-every scene and, on the sphere (closed, outward normals), also as "backface" (the actor's
-BackfaceCulling on); its CPU backend also as "exact" (MinifiedVariance 0: every splat its own
-kernel), its OpenGL backend as "approximate" (the APPROXIMATE filter mode); vtkPointGaussianMapper runs as "disk". Under a software OpenGL
-renderer (Mesa's llvmpipe) the OpenGL rows measure that renderer, not a GPU.
+"default" (EWA; on the CPU minified splats summed per pixel, the default MinifiedVariance, and
+the level of detail) on every scene and, on the sphere (closed, outward normals), also as
+"backface" (the actor's BackfaceCulling on); its CPU backend also as "exact" (MinifiedVariance
+0: every splat its own kernel) and "no-lod" (LevelOfDetail off: every surfel its own splat), its
+OpenGL backend as "approximate" (the APPROXIMATE filter mode); vtkPointGaussianMapper runs as
+"disk". Under a software OpenGL renderer (Mesa's llvmpipe) the OpenGL rows measure that
+renderer, not a GPU. The first frame of the default CPU row builds the level of detail.
 Each case (row) runs in a fresh process of its own: this program again, with --case.
 ms_per_frame is the median over the timed frames after one warm-up frame, whose time is
 first_frame_ms (kernels, lists, buffers and shaders built there); before each timed frame of a
 volume scene the camera turns by half a degree, the transfer function unchanged, so that the
 timed frames are the later frames of an interaction; peak_rss_mb is the
 peak resident memory (VmHWM) of the case's process, its data included.
-rendered .. skipped are vtkSurfaceSplatMapper's counts for the last frame (splats drawn, culled
-outside the frustum, culled as back faces, left out as negligible, input points skipped as
+rendered .. skipped are vtkSurfaceSplatMapper's counts for the last frame (splats drawn, a
+merged splat of the level of detail counting once; culled outside the frustum, culled as back faces, left out as negligible, input points skipped as
 invalid); the OpenGL backend culls in its vertex shader without counting, so its splat counts
 are -1; empty for vtkPointGaussianMapper, which does not report them.
 Volumes: mri is the MRI head ch2.nii.gz (Debian's mricron-data; skipped when absent) with the
@@ -309,6 +311,10 @@ std::vector<MapperKind> Kinds(const Options& options)
         exact.Setting = "exact";
         exact.ExactKernels = true;
         kinds.push_back(exact);
+        MapperKind flat = splat;
+        flat.Setting = "no-lod";
+        flat.LevelOfDetail = false;
+        kinds.push_back(flat);
       }
       MapperKind backface = splat;
       backface.Setting = "backface";
@@ -399,6 +405,7 @@ vtkSmartPointer<vtkMapper> MakeMapper(const MapperKind& kind, vtkPolyData* surfe
     {
       mapper->SetMinifiedVariance(0.0);
     }
+    mapper->SetLevelOfDetail(kind.LevelOfDetail);
     return mapper;
   }
   return splatexample::PointGaussianDisks(surfels);

@@ -70,6 +70,7 @@ struct MapperKind
   int FilterMode = vtkSurfaceSplatMapper::EWA;
   int Ordering = vtkVolumeSplatMapper::BLENDED; // vtkVolumeSplatMapper's SetOrderingMode
   bool ExactKernels = false; // vtkSurfaceSplatMapper's SetMinifiedVariance(0)
+  bool LevelOfDetail = true; // vtkSurfaceSplatMapper's SetLevelOfDetail
 };
 
 // What a case draws: a prop (an actor or a volume) with its mapper, and the mapper's input.

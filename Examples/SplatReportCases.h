@@ -102,7 +102,8 @@ inline std::string DefaultSettingDescription()
   text << FilterModeName(mapper->GetFilterMode()) << ", cutoff " << mapper->GetCutoff() << ", "
        << layers << (layers == 1 ? " layer" : " layers") << ", edge AA "
        << (mapper->GetEdgeAntialiasing() ? "on" : "off") << ", minified variance "
-       << mapper->GetMinifiedVariance() << " (CPU)";
+       << mapper->GetMinifiedVariance() << ", level of detail "
+       << (mapper->GetLevelOfDetail() ? "on" : "off") << " (CPU)";
   return text.str();
 }
 
@@ -136,6 +137,8 @@ inline std::vector<SplatSetting> SplatSettings()
       [](vtkSurfaceSplatMapper* m) { m->SetMinifiedVariance(0.0); }, false, true },
     { "minified", "minified=0.25",
       [](vtkSurfaceSplatMapper* m) { m->SetMinifiedVariance(0.25); }, false, true },
+    { "level of detail", "level-of-detail=off",
+      [](vtkSurfaceSplatMapper* m) { m->SetLevelOfDetail(false); }, false, true },
   };
   // Edge antialiasing: the opposite of the default.
   vtkNew<vtkSurfaceSplatMapper> probe;

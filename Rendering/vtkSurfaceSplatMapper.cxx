@@ -5,6 +5,7 @@
 #include "vtkOpenGLImageDepthCompositor.h"
 #include "vtkOpenGLSurfaceSplatRasterizer.h"
 #include "vtkSurfaceSplatRasterizer.h"
+#include "vtkSurfelHierarchy.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -16,6 +17,7 @@
 #include "vtkMath.h"
 #include "SplatVTKConversions.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderPass.h"
 #include "vtkOrderIndependentTranslucentPass.h"
@@ -55,6 +57,19 @@ struct vtkSurfaceSplatMapper::SurfelArrays
   // their own (compared only, never dereferenced).
   const vtkProperty* Property = nullptr;
   vtkTimeStamp BuildTime;
+  // Their levels of detail, built on the first CPU frame that draws them.
+  vtkNew<vtkSurfelHierarchy> Hierarchy;
+  vtkTimeStamp HierarchyTime;
+
+  const vtkSurfelHierarchy* UpdateHierarchy()
+  {
+    if (this->HierarchyTime < this->BuildTime)
+    {
+      this->Hierarchy->Build(this->View());
+      this->HierarchyTime.Modified();
+    }
+    return this->Hierarchy;
+  }
 
   vtkSurfaceSplatRasterizer::Surfels View() const
   {
@@ -278,6 +293,12 @@ double vtkSurfaceSplatMapper::GetCoverageThreshold()
 vtkIdType vtkSurfaceSplatMapper::GetNumberOfRenderedSplats()
 {
   return this->LastBackend == vtkSplatBackend::OPENGL ? -1 : this->Rasterizer->GetSplattedCount();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkSurfaceSplatMapper::GetNumberOfMergedSplats()
+{
+  return this->LastBackend == vtkSplatBackend::OPENGL ? -1 : this->Rasterizer->GetMergedCount();
 }
 
 //------------------------------------------------------------------------------
@@ -584,8 +605,15 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
   }
   else
   {
+    vtkSurfaceSplatRasterizer::Surfels surfels = this->Surfels->View();
+    if (this->LevelOfDetail && !translucent && this->Primitive == SURFELS &&
+      this->Rasterizer->GetFilter() == splat::KernelFilter::EWA &&
+      this->Rasterizer->GetMinifiedVariance() > 0.0)
+    {
+      surfels.Hierarchy = this->Surfels->UpdateHierarchy();
+    }
     this->Rasterizer->SetSceneDepths(std::move(sceneDepths));
-    this->Rasterizer->Render(this->Surfels->View(), view, lights, material);
+    this->Rasterizer->Render(surfels, view, lights, material);
     this->Compositor->Draw(ren, view.Viewport.x, view.Viewport.y,
       this->Rasterizer->GetColors().data(),
       this->Rasterizer->GetDepths().data(), blending);
@@ -730,6 +758,7 @@ void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "Cutoff: " << this->Rasterizer->GetCutoff() << "\n";
   os << indent << "MinifiedVariance: " << this->Rasterizer->GetMinifiedVariance() << "\n";
+  os << indent << "LevelOfDetail: " << this->LevelOfDetail << "\n";
   os << indent << "DepthThreshold: " << this->Rasterizer->GetDepthThreshold() << "\n";
   os << indent << "NumberOfSplats: " << this->NumberOfSplats << "\n";
   os << indent << "NumberOfSkippedPoints: " << this->NumberOfSkippedPoints << "\n";

@@ -127,6 +127,18 @@ public:
   double GetMinifiedVariance();
   ///@}
 
+  /**
+   * CPU backend: levels of detail for opaque surfels sampled more densely than the pixels. A
+   * hierarchy of merged surfels (vtkSurfelHierarchy) is built once per input, on the first
+   * frame that needs it, and each frame draws, region by region, its coarsest level whose
+   * splats are still minified (see SetMinifiedVariance): far fewer splats for the same image
+   * where many surfels fall in each pixel. Default on; it needs MinifiedVariance above 0 and
+   * the EWA filter, and does nothing for translucent surfels or differential points.
+   */
+  vtkSetMacro(LevelOfDetail, bool);
+  vtkGetMacro(LevelOfDetail, bool);
+  vtkBooleanMacro(LevelOfDetail, bool);
+
   ///@{
   /**
    * Name of the point-data array of per-point opacities in [0, 1]. Default "Opacity".
@@ -267,14 +279,17 @@ public:
 
   ///@{
   /**
-   * What the last render did: points given to the rasterizer; splats drawn; splats left out
-   * (in total, and outside the frustum, back-facing with backface culling, or negligible);
-   * input points skipped as invalid; and the wall-clock time of the render in milliseconds.
+   * What the last render did: points given to the rasterizer; splats drawn; surfels drawn
+   * through merged splats of the level of detail (see LevelOfDetail; a merged splat counts
+   * once among the splats drawn and left out); splats left out (in total, and outside the
+   * frustum, back-facing with backface culling, or negligible); input points skipped as
+   * invalid; and the wall-clock time of the render in milliseconds.
    * The OpenGL backend leaves splats out in its vertex shader without counting them: the
    * splat counts are -1 after an OpenGL render.
    */
   vtkGetMacro(NumberOfSplats, vtkIdType);
   vtkIdType GetNumberOfRenderedSplats();
+  vtkIdType GetNumberOfMergedSplats();
   vtkIdType GetNumberOfCulledSplats();
   vtkIdType GetNumberOfFrustumCulledSplats();
   vtkIdType GetNumberOfBackfaceCulledSplats();
@@ -346,6 +361,7 @@ protected:
   char* ExtentsArrayName = nullptr;
   int Backend = vtkSplatBackend::AUTO;
   int LastBackend = vtkSplatBackend::AUTO;
+  bool LevelOfDetail = true;
 
   vtkIdType NumberOfSplats = 0;
   vtkIdType NumberOfSkippedPoints = 0;

@@ -2,6 +2,7 @@
 #include "vtkSurfaceSplatRasterizer.h"
 
 #include "SplatDifferentialPointNormal.h"
+#include "vtkSurfelHierarchy.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
 
@@ -163,11 +164,12 @@ struct vtkSurfaceSplatRasterizer::PixelCell
 
 struct vtkSurfaceSplatRasterizer::Internals
 {
-  // Per surfel, written only for those drawn with their exact kernel: left uninitialized, so
-  // that the pages of minified and culled surfels are never touched (100 bytes each).
+  // Per splat, written only for those drawn with their exact kernel: left uninitialized, so
+  // that the pages of minified and culled splats are never touched (100 bytes each).
   std::unique_ptr<ScreenSplat[]> Splats;
   std::size_t SplatCapacity = 0;
-  std::vector<std::uint8_t> CullReasons; // per surfel: why it is left out, or Kept, or Minified
+  std::vector<std::uint32_t> Items; // the splats a hierarchy selected (vtkSurfelHierarchy)
+  std::vector<std::uint8_t> CullReasons; // per splat: why it is left out, or Kept, or Minified
   std::vector<DifferentialSplat> DifferentialSplats; // parallel to Splats; empty for surfels
   std::vector<vtkIdType> BandOffsets; // per band, into BandSplats
   std::vector<vtkIdType> BandSplats;  // splat indices, band by band, in input order
@@ -381,10 +383,11 @@ inline void Deposit(PixelCell* cells, std::uint8_t& count, int layers, const Min
 }
 
 // A minified splat from its eye-space center p and axes a0, a1, its projection and warped basis
-// variance, the pixel holding its center, its normal turned towards the viewer and its color.
+// variance, the pixel holding its center, its normal turned towards the viewer, its color and
+// the ratio of its mass to the area its axes span (1 but for merged nodes of a hierarchy).
 MinifiedSplat MakeMinifiedSplat(const glm::dvec3& p, const glm::dvec3& a0, const glm::dvec3& a1,
   const splat::SurfelProjection& projection, const glm::dmat2& warped, const glm::dvec2& cell,
-  const glm::dvec3& normal, const float* color, double depthThreshold)
+  const glm::dvec3& normal, const float* color, double massScale, double depthThreshold)
 {
   MinifiedSplat m;
   m.CenterX = static_cast<float>(projection.Center.x);
@@ -400,7 +403,7 @@ MinifiedSplat MakeMinifiedSplat(const glm::dvec3& p, const glm::dvec3& a0, const
   m.DepthSlope[1] = static_cast<float>(slope.y);
   m.Threshold = static_cast<float>(
     depthThreshold * std::sqrt(std::max(glm::dot(a0, a0), glm::dot(a1, a1))));
-  m.Mass = static_cast<float>(std::abs(det));
+  m.Mass = static_cast<float>(massScale * std::abs(det));
   m.Spread = static_cast<float>(0.5 * (warped[0][0] + warped[1][1]));
   for (int c = 0; c < 3; ++c)
   {
@@ -529,7 +532,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   this->Layers = translucent || this->EdgeAntialiasing ? this->NumberOfLayers : 1;
   this->Fragments.resize(pixels * this->Layers);
   this->FragmentCounts.assign(pixels, 0);
-  this->SplattedCount = this->MinifiedCount = 0;
+  this->SplattedCount = this->MinifiedCount = this->MergedCount = 0;
   this->FrustumCulledCount = this->BackfaceCulledCount = 0;
   this->NegligibleCount = this->FragmentCount = 0;
 
@@ -574,8 +577,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   // How far a splat reaches along an axis, in units of the axis: its cutoff ellipse (beta =
   // |u|^2 < cutoff in axis units) or its rectangle.
   const double depthReach = footprintScale * std::max(std::sqrt(cutoff), 1.0);
-  std::vector<DifferentialSplat>& differentials = this->Internal->DifferentialSplats;
-  differentials.resize(differential ? surfels.Count : 0);
+
   // Minified splats are summed per pixel where the exact kernel is the EWA one of an opaque
   // surfel. A pixel gathers the cells within the cutoff's reach of its center for the widest
   // spread, sqrt(2 c (1 + spread)) pixels: `reach` cells on each side, and as many outside the
@@ -591,38 +593,58 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   grid.Bands = (grid.Height + BandHeight - 1) / BandHeight;
   const int reach = grid.Reach;
   const int cellBands = grid.Bands;
-  const vtkIdType chunks = (static_cast<vtkIdType>(surfels.Count) + ChunkSize - 1) / ChunkSize;
+  // With a hierarchy of the surfels, the splats are the nodes it selects, whose coarser levels
+  // are all minified.
+  const vtkSurfelHierarchy* hierarchy = minify && surfels.Hierarchy &&
+      surfels.Hierarchy->GetNumberOfSurfels() == static_cast<vtkIdType>(surfels.Count)
+    ? surfels.Hierarchy
+    : nullptr;
+  std::vector<std::uint32_t>& items = this->Internal->Items;
+  this->MergedCount =
+    hierarchy ? hierarchy->Select(camera, this->MinifiedVariance, items) : vtkIdType(0);
+  hierarchy = this->MergedCount > 0 ? hierarchy : nullptr;
+  const Surfels merged = hierarchy ? hierarchy->GetMergedSurfels() : Surfels();
+  const vtkIdType count = static_cast<vtkIdType>(hierarchy ? items.size() : surfels.Count);
+  const vtkIdType chunks = (count + ChunkSize - 1) / ChunkSize;
   std::vector<std::vector<MinifiedSplat>>& minified = this->Internal->MinifiedSplats;
   minified.resize(minify ? chunks * cellBands : 0);
+  std::vector<DifferentialSplat>& differentials = this->Internal->DifferentialSplats;
+  differentials.resize(differential ? count : 0);
 
   // 1. Setup, in eye space, chunk by chunk.
-  if (this->Internal->SplatCapacity < surfels.Count)
+  if (this->Internal->SplatCapacity < static_cast<std::size_t>(count))
   {
-    this->Internal->Splats.reset(new ScreenSplat[surfels.Count]);
-    this->Internal->SplatCapacity = surfels.Count;
+    this->Internal->Splats.reset(new ScreenSplat[count]);
+    this->Internal->SplatCapacity = count;
   }
   ScreenSplat* const splats = this->Internal->Splats.get();
   std::vector<std::uint8_t>& reasons = this->Internal->CullReasons;
-  reasons.resize(surfels.Count);
+  reasons.resize(count);
   const glm::dmat3 axisToEye(modelToEye);
   const glm::dvec3 eyeTranslation(modelToEye[3]);
   vtkSMPTools::For(0, chunks, 1,
     [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
     {
       const vtkIdType begin = chunkBegin * ChunkSize;
-      const vtkIdType end = std::min(chunkEnd * ChunkSize, static_cast<vtkIdType>(surfels.Count));
+      const vtkIdType end = std::min(chunkEnd * ChunkSize, count);
       for (vtkIdType c = chunkBegin * cellBands; minify && c < chunkEnd * cellBands; ++c)
       {
         minified[c].clear();
       }
-      for (vtkIdType i = begin; i < end; ++i)
+      for (vtkIdType k = begin; k < end; ++k)
       {
-        std::uint8_t& reason = reasons[i];
+        std::uint8_t& reason = reasons[k];
         reason = OutsideFrustum;
-        const double* position = surfels.Positions + 3 * i;
-        const float* n = surfels.Normals + 3 * i;
-        const float* axis0 = surfels.Axes0 + 3 * i;
-        const float* axis1 = surfels.Axes1 + 3 * i;
+        // Splat k: surfel i, or merged node i of the hierarchy.
+        const std::size_t item = hierarchy ? items[k] : static_cast<std::size_t>(k);
+        const bool node = item >= surfels.Count;
+        const Surfels& source = node ? merged : surfels;
+        const std::size_t i = node ? item - surfels.Count : item;
+        const double massScale = node ? hierarchy->GetMassScales()[i] : 1.0;
+        const double* position = source.Positions + 3 * i;
+        const float* n = source.Normals + 3 * i;
+        const float* axis0 = source.Axes0 + 3 * i;
+        const float* axis1 = source.Axes1 + 3 * i;
         const glm::dvec3 p =
           axisToEye * glm::dvec3(position[0], position[1], position[2]) + eyeTranslation;
         const glm::dvec3 a0 = axisToEye * glm::dvec3(axis0[0], axis0[1], axis0[2]);
@@ -663,9 +685,9 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
             cell.x < width + reach && cell.y >= -reach && cell.y < height + reach)
           {
             const int band = (static_cast<int>(cell.y) + reach) / BandHeight;
-            minified[(i / ChunkSize) * cellBands + band].push_back(
-              MakeMinifiedSplat(p, a0, a1, projection, warped, cell,
-                backFacing ? -normal : normal, surfels.Colors + 3 * i, depthThreshold));
+            minified[(k / ChunkSize) * cellBands + band].push_back(
+              MakeMinifiedSplat(p, a0, a1, projection, warped, cell, backFacing ? -normal : normal,
+                source.Colors + 3 * i, massScale, depthThreshold));
             reason = Minified;
           }
           continue;
@@ -678,7 +700,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         {
           continue;
         }
-        ScreenSplat& s = splats[i];
+        ScreenSplat& s = splats[k];
         s.X0 = box.x;
         s.X1 = box.y;
         s.Y0 = box.z;
@@ -690,7 +712,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         s.ConicXX = static_cast<float>(0.5 * kernel.Conic[0][0]);
         s.ConicXY = static_cast<float>(kernel.Conic[1][0]);
         s.ConicYY = static_cast<float>(0.5 * kernel.Conic[1][1]);
-        s.Amplitude = amplitudeScale * static_cast<float>(kernel.Amplitude);
+        s.Amplitude = amplitudeScale * static_cast<float>(massScale * kernel.Amplitude);
 
         splat::PlaneDepth depth;
         if (!splat::MakePlaneDepth(rays, p, normal, depth))
@@ -714,14 +736,14 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         for (int c = 0; c < 3; ++c)
         {
           s.Normal[c] = static_cast<float>(normal[c]);
-          s.Color[c] = surfels.Colors[3 * i + c];
+          s.Color[c] = source.Colors[3 * i + c];
         }
-        s.Alpha = surfels.Opacities ? surfels.Opacities[i] : 1.0f;
+        s.Alpha = source.Opacities ? source.Opacities[i] : 1.0f;
         if (differential)
         {
           SetUpDifferentialSplat(rays, p, a0, a1, glm::length(glm::dvec3(axis0[0], axis0[1],
             axis0[2])), glm::length(glm::dvec3(axis1[0], axis1[1], axis1[2])),
-            surfels.Curvatures + 2 * i, backFacing, differentials[i]);
+            source.Curvatures + 2 * i, backFacing, differentials[k]);
         }
       }
     });
@@ -733,7 +755,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<vtkIdType>& bandSplats = this->Internal->BandSplats;
   offsets.assign(bands + 1, 0);
   vtkIdType culled[5] = { 0, 0, 0, 0, 0 };
-  for (std::size_t i = 0; i < surfels.Count; ++i)
+  for (vtkIdType i = 0; i < count; ++i)
   {
     ++culled[reasons[i]];
     if (reasons[i] != Kept)
@@ -758,7 +780,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   bandSplats.resize(offsets[bands]);
   {
     std::vector<vtkIdType> fill(offsets.begin(), offsets.end() - 1);
-    for (std::size_t i = 0; i < surfels.Count; ++i)
+    for (vtkIdType i = 0; i < count; ++i)
     {
       if (reasons[i] != Kept)
       {
@@ -767,7 +789,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
       const ScreenSplat& s = splats[i];
       for (int b = s.Y0 / BandHeight; b <= s.Y1 / BandHeight; ++b)
       {
-        bandSplats[fill[b]++] = static_cast<vtkIdType>(i);
+        bandSplats[fill[b]++] = i;
       }
     }
   }
@@ -1155,6 +1177,7 @@ void vtkSurfaceSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinifiedVariance: " << this->MinifiedVariance << "\n";
   os << indent << "SplattedCount: " << this->SplattedCount << "\n";
   os << indent << "MinifiedCount: " << this->MinifiedCount << "\n";
+  os << indent << "MergedCount: " << this->MergedCount << "\n";
   os << indent << "FrustumCulledCount: " << this->FrustumCulledCount << "\n";
   os << indent << "BackfaceCulledCount: " << this->BackfaceCulledCount << "\n";
   os << indent << "NegligibleCount: " << this->NegligibleCount << "\n";

@@ -51,6 +51,8 @@
 #include <cstdint> // For std::uint8_t
 #include <vector>  // For the frame buffer
 
+class vtkSurfelHierarchy;
+
 class SPLATRENDERING_EXPORT vtkSurfaceSplatRasterizer : public vtkObject
 {
 public:
@@ -167,6 +169,9 @@ public:
     const float* Opacities = nullptr;
     const float* Curvatures = nullptr;
     std::size_t Count = 0;
+    /// Coarser levels of these surfels, for minified splats (see vtkSurfelHierarchy): drawn
+    /// where the EWA filter minifies opaque surfels. Null for none.
+    const vtkSurfelHierarchy* Hierarchy = nullptr;
   };
 
   /**
@@ -204,13 +209,15 @@ public:
 
   ///@{
   /**
-   * What the last frame did: surfels splatted, of which minified (accumulated per pixel, see
-   * MinifiedVariance); surfels left out because they lie outside the view frustum (behind the
+   * What the last frame did: splats drawn, of which minified (accumulated per pixel, see
+   * MinifiedVariance); splats left out because they lie outside the view frustum (behind the
    * eye, wholly outside the near/far range, footprint outside the viewport), face away with
-   * BackfaceCulling on, or are edge-on (negligible weight); and pixel
-   * contributions written.
+   * BackfaceCulling on, or are edge-on (negligible weight); and pixel contributions written.
+   * A splat is a surfel or, with a hierarchy, a merged node of it: MergedCount is the number
+   * of surfels the merged nodes among the splats stand for.
    */
   vtkGetMacro(SplattedCount, vtkIdType);
+  vtkGetMacro(MergedCount, vtkIdType);
   vtkGetMacro(MinifiedCount, vtkIdType);
   vtkGetMacro(FrustumCulledCount, vtkIdType);
   vtkGetMacro(BackfaceCulledCount, vtkIdType);
@@ -246,6 +253,7 @@ protected:
 
   vtkIdType SplattedCount = 0;
   vtkIdType MinifiedCount = 0;
+  vtkIdType MergedCount = 0;
   vtkIdType FrustumCulledCount = 0;
   vtkIdType BackfaceCulledCount = 0;
   vtkIdType NegligibleCount = 0;

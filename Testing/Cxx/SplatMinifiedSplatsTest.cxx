@@ -5,6 +5,7 @@
 // the background and against another surface, and give the same image for any number of threads.
 #include "SplatRasterizerTestUtilities.h"
 #include "vtkSurfaceSplatRasterizer.h"
+#include "vtkSurfelHierarchy.h"
 
 #include "vtkNew.h"
 #include "vtkSMPTools.h"
@@ -65,11 +66,22 @@ struct Frame
   std::vector<std::uint8_t> Colors;
   vtkIdType Splatted = 0;
   vtkIdType Minified = 0;
+  vtkIdType Merged = 0;
 };
 
-// Drawn with the default settings (minified splats summed per pixel) or, with exact set, every
-// splat with its own kernel.
-Frame Draw(const SurfelGrid& surfels, const vtkSurfaceSplatRasterizer::Camera& camera, bool exact)
+enum class Path
+{
+  Exact,        // every splat with its own kernel
+  Minified,     // the default settings: minified splats summed per pixel
+  LevelOfDetail // and the surfels' hierarchy, as vtkSurfaceSplatMapper draws them
+};
+
+const char* Name(Path path)
+{
+  return path == Path::Exact ? "exact" : path == Path::Minified ? "minified" : "level of detail";
+}
+
+Frame Draw(const SurfelGrid& surfels, const vtkSurfaceSplatRasterizer::Camera& camera, Path path)
 {
   std::vector<splat::Light> lights(1);
   lights[0].Direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
@@ -77,13 +89,20 @@ Frame Draw(const SurfelGrid& surfels, const vtkSurfaceSplatRasterizer::Camera& c
   material.Specular = glm::vec3(0.3f);
   material.SpecularPower = 20.0f;
   vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
-  if (exact)
+  if (path == Path::Exact)
   {
     rasterizer->SetMinifiedVariance(0.0);
   }
-  rasterizer->Render(surfels.View(), camera, lights, material);
+  vtkSurfaceSplatRasterizer::Surfels view = surfels.View();
+  vtkNew<vtkSurfelHierarchy> hierarchy;
+  if (path == Path::LevelOfDetail)
+  {
+    hierarchy->Build(view);
+    view.Hierarchy = hierarchy;
+  }
+  rasterizer->Render(view, camera, lights, material);
   return { rasterizer->GetColors(), rasterizer->GetSplattedCount(),
-    rasterizer->GetMinifiedCount() };
+    rasterizer->GetMinifiedCount(), rasterizer->GetMergedCount() };
 }
 
 // Root mean square difference of channel `channel` (0..3) over the pixels where `where` holds.
@@ -155,11 +174,23 @@ TEST(MinifiedSplats, SphereOfSubpixelSplatsMatchesTheExactKernels)
 {
   const SurfelGrid sphere = SurfelSphere(400000, 0.3, glm::dvec3(0.0));
   const vtkSurfaceSplatRasterizer::Camera camera = FrontoParallelCamera(1.8, Size);
-  const Frame exact = Draw(sphere, camera, true);
-  const Frame minified = Draw(sphere, camera, false);
+  const Frame exact = Draw(sphere, camera, Path::Exact);
   EXPECT_EQ(exact.Minified, 0);
+  for (const Path path : { Path::Minified, Path::LevelOfDetail })
+  {
+  const Frame minified = Draw(sphere, camera, path);
   EXPECT_GT(minified.Minified, 0.99 * minified.Splatted);
-  EXPECT_EQ(minified.Splatted, exact.Splatted);
+  if (path == Path::Minified)
+  {
+    EXPECT_EQ(minified.Splatted, exact.Splatted);
+  }
+  else
+  {
+    // Merged nodes 0.9 pixels apart, the surfels themselves at grazing angles: under 40% of
+    // the splats.
+    EXPECT_GT(minified.Merged, 0.85 * 400000);
+    EXPECT_LT(minified.Splatted, 0.4 * exact.Splatted);
+  }
   const double color = ColorRMSE(exact, minified);
   const double alpha = RMSE(exact, minified, 3, [](std::size_t) { return true; });
   const std::size_t edgeExact = PartlyCovered(exact);
@@ -167,9 +198,10 @@ TEST(MinifiedSplats, SphereOfSubpixelSplatsMatchesTheExactKernels)
   const double radius = SilhouetteRadius(0.3, 1.8);
   const double radiusExact = CoveredRadius(exact);
   const double radiusMinified = CoveredRadius(minified);
-  std::printf("sphere: color RMSE %.4f, alpha RMSE %.4f, partly covered pixels %zu (exact %zu), "
-              "covered radius %.2f (exact %.2f, true %.2f)\n",
-    color, alpha, edgeMinified, edgeExact, radiusMinified, radiusExact, radius);
+  std::printf("sphere, %s: %lld splats, color RMSE %.4f, alpha RMSE %.4f, partly covered "
+              "pixels %zu (exact %zu), covered radius %.2f (exact %.2f, true %.2f)\n",
+    Name(path), static_cast<long long>(minified.Splatted), color, alpha, edgeMinified, edgeExact,
+    radiusMinified, radiusExact, radius);
   EXPECT_LT(color, 0.015);
   EXPECT_LT(alpha, 0.06);
   EXPECT_GT(edgeExact, 100u);
@@ -177,6 +209,7 @@ TEST(MinifiedSplats, SphereOfSubpixelSplatsMatchesTheExactKernels)
   EXPECT_LT(edgeMinified, 2.0 * edgeExact);
   EXPECT_NEAR(radiusMinified, radiusExact, 0.5);
   EXPECT_NEAR(radiusExact, radius, 2.0);
+  }
 }
 
 // The same sphere in front of a plane of minified splats: where its silhouette crosses the
@@ -191,9 +224,12 @@ TEST(MinifiedSplats, SilhouetteAgainstAnotherSurfaceStaysAntialiased)
     scene.Positions[i + 2] = -0.5; // the plane behind the sphere
   }
   const vtkSurfaceSplatRasterizer::Camera camera = FrontoParallelCamera(1.8, Size);
-  const Frame exact = Draw(scene, camera, true);
-  const Frame minified = Draw(scene, camera, false);
+  const Frame exact = Draw(scene, camera, Path::Exact);
+  for (const Path path : { Path::Minified, Path::LevelOfDetail })
+  {
+  const Frame minified = Draw(scene, camera, path);
   EXPECT_GT(minified.Minified, 0.99 * minified.Splatted);
+  EXPECT_EQ(minified.Merged > 0, path == Path::LevelOfDetail);
   // The silhouette: pixels between 0.9 and 1.1 sphere radii from the image center.
   const double radius = SilhouetteRadius(0.3, 1.8);
   auto ring = [radius](std::size_t pixel)
@@ -221,13 +257,14 @@ TEST(MinifiedSplats, SilhouetteAgainstAnotherSurfaceStaysAntialiased)
     blendedExact += ring(pixel) && blended(exact, pixel);
     blendedMinified += ring(pixel) && blended(minified, pixel);
   }
-  std::printf("silhouette over a plane: color RMSE %.4f in the ring, blended pixels %zu (exact "
-              "%zu), color RMSE %.4f overall\n",
-    ringColor, blendedMinified, blendedExact, ColorRMSE(exact, minified));
+  std::printf("silhouette over a plane, %s: color RMSE %.4f in the ring, blended pixels %zu "
+              "(exact %zu), color RMSE %.4f overall\n",
+    Name(path), ringColor, blendedMinified, blendedExact, ColorRMSE(exact, minified));
   // Pixel by pixel the antialiased edges differ by up to about one pixel's coverage.
   EXPECT_LT(ringColor, 0.12);
   EXPECT_GT(blendedExact, 50u);
   EXPECT_GT(blendedMinified, 0.6 * blendedExact);
+  }
 }
 
 // A checkerboard plane seen at a grazing angle: splats near the camera keep their exact
@@ -247,28 +284,37 @@ TEST(MinifiedSplats, CheckerboardAtTheHorizonMatchesTheExactKernels)
     glm::lookAt(glm::dvec3(0.0, -1.3, 0.1), glm::dvec3(0.0, 0.5, 0.0), glm::dvec3(0.0, 0.0, 1.0));
   camera.EyeToClip = glm::perspective(glm::radians(40.0), 1.0, 0.01, 10.0);
   camera.Viewport = glm::ivec2(Size, Size);
-  const Frame exact = Draw(plane, camera, true);
-  const Frame minified = Draw(plane, camera, false);
-  EXPECT_GT(minified.Minified, 0.2 * minified.Splatted);
-  EXPECT_LT(minified.Minified, 0.9 * minified.Splatted);
-  const double color = ColorRMSE(exact, minified);
-  std::printf("checkerboard: %lld of %lld splats minified, color RMSE %.4f\n",
-    static_cast<long long>(minified.Minified), static_cast<long long>(minified.Splatted), color);
-  EXPECT_LT(color, 0.02);
+  const Frame exact = Draw(plane, camera, Path::Exact);
+  for (const Path path : { Path::Minified, Path::LevelOfDetail })
+  {
+    const Frame minified = Draw(plane, camera, path);
+    EXPECT_GT(minified.Minified, 0.2 * minified.Splatted);
+    EXPECT_LT(minified.Minified, 0.9 * minified.Splatted);
+    const double color = ColorRMSE(exact, minified);
+    std::printf("checkerboard, %s: %lld of %lld splats minified, %lld surfels merged, color "
+                "RMSE %.4f\n",
+      Name(path), static_cast<long long>(minified.Minified),
+      static_cast<long long>(minified.Splatted), static_cast<long long>(minified.Merged), color);
+    EXPECT_LT(color, 0.02);
+  }
 }
 
 // The minified splats' sums do not depend on the number of threads.
 TEST(MinifiedSplats, SameImageForOneAndTwoThreads)
 {
   const SurfelGrid sphere = SurfelSphere(100000, 0.3, glm::dvec3(0.0));
-  std::vector<Frame> frames;
-  for (int threads : { 1, 2 })
+  for (const Path path : { Path::Minified, Path::LevelOfDetail })
   {
-    vtkSMPTools::Initialize(threads);
-    frames.push_back(Draw(sphere, FrontoParallelCamera(3.0, Size), false));
+    std::vector<Frame> frames;
+    for (int threads : { 1, 2 })
+    {
+      vtkSMPTools::Initialize(threads);
+      frames.push_back(Draw(sphere, FrontoParallelCamera(3.0, Size), path));
+    }
+    EXPECT_GT(frames[0].Minified, 0.9 * frames[0].Splatted);
+    EXPECT_EQ(frames[0].Merged > 0, path == Path::LevelOfDetail);
+    EXPECT_TRUE(frames[0].Colors == frames[1].Colors) << Name(path);
   }
-  EXPECT_GT(frames[0].Minified, 0.9 * frames[0].Splatted);
-  EXPECT_TRUE(frames[0].Colors == frames[1].Colors);
 }
 
 // Translucent splats always take the exact kernels.
@@ -276,7 +322,7 @@ TEST(MinifiedSplats, TranslucentSplatsAreNotMinified)
 {
   SurfelGrid sphere = SurfelSphere(100000, 0.3, glm::dvec3(0.0));
   sphere.Opacities.assign(100000, 0.5f);
-  const Frame frame = Draw(sphere, FrontoParallelCamera(3.0, Size), false);
+  const Frame frame = Draw(sphere, FrontoParallelCamera(3.0, Size), Path::Minified);
   EXPECT_GT(frame.Splatted, 0);
   EXPECT_EQ(frame.Minified, 0);
 }

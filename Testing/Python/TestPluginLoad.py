@@ -75,12 +75,14 @@ def test_mapper(servermanager):
 
     # Every setting has its property and its information (read-back) property; every statistic
     # its information-only property. A missing one fails here, before the round trips.
-    settings = ["Radius", "RadiusArrayName", "Cutoff", "MinifiedVariance", "DepthThreshold",
+    settings = ["Radius", "RadiusArrayName", "Cutoff", "MinifiedVariance", "LevelOfDetail",
+                "DepthThreshold",
                 "FilterMode", "Backend", "NumberOfLayers", "EdgeAntialiasing", "CoverageThreshold", "OpacityArrayName",
                 "TangentAxis0ArrayName", "TangentAxis1ArrayName", "Primitive",
                 "PrincipalDirectionUArrayName", "PrincipalDirectionVArrayName",
                 "PrincipalCurvaturesArrayName", "ExtentsArrayName"]
-    statistics = ["NumberOfSplats", "NumberOfRenderedSplats", "NumberOfCulledSplats",
+    statistics = ["NumberOfSplats", "NumberOfRenderedSplats", "NumberOfMergedSplats",
+                  "NumberOfCulledSplats",
                   "NumberOfFrustumCulledSplats", "NumberOfBackfaceCulledSplats",
                   "NumberOfNegligibleSplats", "NumberOfSkippedPoints",
                   "LastRenderTimeInMilliseconds", "LastBackend"]
@@ -106,7 +108,8 @@ def test_mapper(servermanager):
     smproxy.UpdateVTKObjects()
     check_defaults_and_enumerations(
         smproxy, mapper, "",
-        {"Cutoff": 1.0, "MinifiedVariance": 0.75, "Radius": 1.0, "DepthThreshold": 1.0,
+        {"Cutoff": 1.0, "MinifiedVariance": 0.75, "LevelOfDetail": 1, "Radius": 1.0,
+         "DepthThreshold": 1.0,
          "FilterMode": 0,
          "Backend": 0, "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.4,
          "RadiusArrayName": "Radius", "OpacityArrayName": "Opacity",
@@ -131,7 +134,8 @@ def test_mapper(servermanager):
           "EdgeAntialiasing is a boolean")
 
     # Round trips: proxy property -> VTK object -> information property.
-    values = {"Cutoff": 2.5, "MinifiedVariance": 0.0, "Radius": 0.125, "DepthThreshold": 0.75,
+    values = {"Cutoff": 2.5, "MinifiedVariance": 0.0, "LevelOfDetail": 0, "Radius": 0.125,
+              "DepthThreshold": 0.75,
               "NumberOfLayers": 5, "EdgeAntialiasing": 0, "CoverageThreshold": 0.25}
     strings = {"RadiusArrayName": "SplatRadius", "OpacityArrayName": "SplatOpacity",
                "TangentAxis0ArrayName": "MajorAxis", "TangentAxis1ArrayName": "MinorAxis",
