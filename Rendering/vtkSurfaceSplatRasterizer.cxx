@@ -22,11 +22,15 @@ enum CullReason
   OutsideFrustum,
   BackFacing,
   Negligible,
-  Minified // kept, accumulated per pixel
+  Minified, // kept, accumulated per pixel
+  Hidden    // faces away, in a region hidden by nearer surfaces (vtkSurfelHierarchy)
 };
 
 // Rows per band: small enough to balance the threads, large enough that few kernels straddle bands.
 constexpr int BandHeight = 16;
+
+// A row of cells that holds none.
+const glm::ivec2 EmptySpan(std::numeric_limits<int>::max(), std::numeric_limits<int>::min());
 
 // Accumulated alpha beyond which the fragments behind change no 8-bit color.
 constexpr float OpaqueAlpha = 1.0f - 1e-4f;
@@ -169,6 +173,7 @@ struct vtkSurfaceSplatRasterizer::Internals
   std::unique_ptr<ScreenSplat[]> Splats;
   std::size_t SplatCapacity = 0;
   std::vector<std::uint32_t> Items; // the splats a hierarchy selected (vtkSurfelHierarchy)
+  std::vector<vtkSurfelHierarchy::BackRegion> BackRegions; // and its regions facing away
   std::vector<std::uint8_t> CullReasons; // per splat: why it is left out, or Kept, or Minified
   std::vector<DifferentialSplat> DifferentialSplats; // parallel to Splats; empty for surfels
   std::vector<vtkIdType> BandOffsets; // per band, into BandSplats
@@ -188,6 +193,9 @@ struct vtkSurfaceSplatRasterizer::Internals
   // Per pixel of the viewport padded by the gather's reach, its cells, front to back.
   std::vector<PixelCell> Cells;
   std::vector<std::uint8_t> CellCounts;
+  // Per row of cells, the first and last that hold any (EmptySpan for none): the gather skips
+  // the pixels no cell reaches.
+  std::vector<glm::ivec2> CellSpans;
 };
 
 namespace
@@ -533,7 +541,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   this->Fragments.resize(pixels * this->Layers);
   this->FragmentCounts.assign(pixels, 0);
   this->SplattedCount = this->MinifiedCount = this->MergedCount = 0;
-  this->FrustumCulledCount = this->BackfaceCulledCount = 0;
+  this->FrustumCulledCount = this->BackfaceCulledCount = this->HiddenCount = 0;
   this->NegligibleCount = this->FragmentCount = 0;
 
   Frame& frame = this->CurrentFrame;
@@ -600,18 +608,29 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
     ? surfels.Hierarchy
     : nullptr;
   std::vector<std::uint32_t>& items = this->Internal->Items;
-  this->MergedCount =
-    hierarchy ? hierarchy->Select(camera, this->MinifiedVariance, items) : vtkIdType(0);
+  std::vector<vtkSurfelHierarchy::BackRegion>& backRegions = this->Internal->BackRegions;
+  backRegions.clear();
+  this->MergedCount = hierarchy
+    ? hierarchy->Select(camera, this->MinifiedVariance, items, backRegions)
+    : vtkIdType(0);
   hierarchy = this->MergedCount > 0 ? hierarchy : nullptr;
   const Surfels merged = hierarchy ? hierarchy->GetMergedSurfels() : Surfels();
   const vtkIdType count = static_cast<vtkIdType>(hierarchy ? items.size() : surfels.Count);
-  const vtkIdType chunks = (count + ChunkSize - 1) / ChunkSize;
   std::vector<std::vector<MinifiedSplat>>& minified = this->Internal->MinifiedSplats;
-  minified.resize(minify ? chunks * cellBands : 0);
   std::vector<DifferentialSplat>& differentials = this->Internal->DifferentialSplats;
   differentials.resize(differential ? count : 0);
 
-  // 1. Setup, in eye space, chunk by chunk.
+  const float cutoffF = static_cast<float>(cutoff);
+  const float nearClip = static_cast<float>(nearDepth);
+  const float farClip = static_cast<float>(farDepth);
+  // The opaque scene's window depths as linear eye depths, for the per-fragment test.
+  const std::vector<float> sceneEyeDepths = this->SceneDepths.size() == pixels
+    ? splat::EyeDepthsOfWindowDepths(frame.ClipToEye, this->SceneDepths)
+    : std::vector<float>();
+  const float* sceneDepths = sceneEyeDepths.empty() ? nullptr : sceneEyeDepths.data();
+  const int layers = this->Layers;
+  const NegativeExponential exponential(cutoffF);
+
   if (this->Internal->SplatCapacity < static_cast<std::size_t>(count))
   {
     this->Internal->Splats.reset(new ScreenSplat[count]);
@@ -622,11 +641,17 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   reasons.resize(count);
   const glm::dmat3 axisToEye(modelToEye);
   const glm::dvec3 eyeTranslation(modelToEye[3]);
+  // Steps 1 and 2 for splats [first, last).
+  auto drawRange = [&](vtkIdType first, vtkIdType last)
+  {
+  // 1. Setup, in eye space, chunk by chunk.
+  const vtkIdType chunks = (last - first + ChunkSize - 1) / ChunkSize;
+  minified.resize(minify ? chunks * cellBands : 0);
   vtkSMPTools::For(0, chunks, 1,
     [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
     {
-      const vtkIdType begin = chunkBegin * ChunkSize;
-      const vtkIdType end = std::min(chunkEnd * ChunkSize, count);
+      const vtkIdType begin = first + chunkBegin * ChunkSize;
+      const vtkIdType end = std::min(first + chunkEnd * ChunkSize, last);
       for (vtkIdType c = chunkBegin * cellBands; minify && c < chunkEnd * cellBands; ++c)
       {
         minified[c].clear();
@@ -685,7 +710,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
             cell.x < width + reach && cell.y >= -reach && cell.y < height + reach)
           {
             const int band = (static_cast<int>(cell.y) + reach) / BandHeight;
-            minified[(k / ChunkSize) * cellBands + band].push_back(
+            minified[((k - first) / ChunkSize) * cellBands + band].push_back(
               MakeMinifiedSplat(p, a0, a1, projection, warped, cell, backFacing ? -normal : normal,
                 source.Colors + 3 * i, massScale, depthThreshold));
             reason = Minified;
@@ -754,10 +779,10 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<vtkIdType>& offsets = this->Internal->BandOffsets;
   std::vector<vtkIdType>& bandSplats = this->Internal->BandSplats;
   offsets.assign(bands + 1, 0);
-  vtkIdType culled[5] = { 0, 0, 0, 0, 0 };
-  for (vtkIdType i = 0; i < count; ++i)
+  vtkIdType minifiedInRange = 0;
+  for (vtkIdType i = first; i < last; ++i)
   {
-    ++culled[reasons[i]];
+    minifiedInRange += reasons[i] == Minified;
     if (reasons[i] != Kept)
     {
       continue;
@@ -768,11 +793,6 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
       ++offsets[b + 1];
     }
   }
-  this->FrustumCulledCount = culled[OutsideFrustum];
-  this->BackfaceCulledCount = culled[BackFacing];
-  this->NegligibleCount = culled[Negligible];
-  this->MinifiedCount = culled[Minified];
-  this->SplattedCount = culled[Kept] + culled[Minified];
   for (int b = 0; b < bands; ++b)
   {
     offsets[b + 1] += offsets[b];
@@ -780,7 +800,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   bandSplats.resize(offsets[bands]);
   {
     std::vector<vtkIdType> fill(offsets.begin(), offsets.end() - 1);
-    for (vtkIdType i = 0; i < count; ++i)
+    for (vtkIdType i = first; i < last; ++i)
     {
       if (reasons[i] != Kept)
       {
@@ -795,16 +815,6 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   }
 
   // 2. Splatting, band by band.
-  const float cutoffF = static_cast<float>(cutoff);
-  const float nearClip = static_cast<float>(nearDepth);
-  const float farClip = static_cast<float>(farDepth);
-  // The opaque scene's window depths as linear eye depths, for the per-fragment test.
-  const std::vector<float> sceneEyeDepths = this->SceneDepths.size() == pixels
-    ? splat::EyeDepthsOfWindowDepths(frame.ClipToEye, this->SceneDepths)
-    : std::vector<float>();
-  const float* sceneDepths = sceneEyeDepths.empty() ? nullptr : sceneEyeDepths.data();
-  const int layers = this->Layers;
-  const NegativeExponential exponential(cutoffF);
   std::vector<vtkIdType> fragments(bands, 0);
   vtkSMPTools::For(0, bands, 1,
     [&](vtkIdType bandBegin, vtkIdType bandEnd)
@@ -896,11 +906,102 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   {
     this->FragmentCount += f;
   }
-  if (this->MinifiedCount > 0)
+  if (minifiedInRange > 0)
   {
     this->SumMinifiedSplats(chunks);
     this->FragmentCount += this->GatherMinifiedSplats(sceneDepths);
   }
+  };
+
+  // Regions whose splats all face away go last: those that the splats before them hide, behind
+  // fully covered nearer surfaces, are left out, and the rest are drawn in a second pass.
+  const vtkIdType front = backRegions.empty() ? count : backRegions.front().Begin;
+  drawRange(0, front);
+  vtkIdType drawn = front;
+  for (const vtkSurfelHierarchy::BackRegion& region : backRegions)
+  {
+    if (!this->RegionHidden(region.Low, region.High, region.Reach, nearDepth))
+    {
+      if (static_cast<std::size_t>(drawn) != region.Begin)
+      {
+        std::copy(items.begin() + region.Begin, items.begin() + region.End, items.begin() + drawn);
+      }
+      drawn += region.End - region.Begin;
+    }
+  }
+  std::fill(reasons.begin() + drawn, reasons.begin() + count, Hidden);
+  drawRange(front, drawn);
+
+  vtkIdType culled[6] = { 0, 0, 0, 0, 0, 0 };
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    ++culled[reasons[i]];
+  }
+  this->FrustumCulledCount = culled[OutsideFrustum];
+  this->BackfaceCulledCount = culled[BackFacing];
+  this->NegligibleCount = culled[Negligible];
+  this->HiddenCount = culled[Hidden];
+  this->MinifiedCount = culled[Minified];
+  this->SplattedCount = culled[Kept] + culled[Minified];
+}
+
+//------------------------------------------------------------------------------
+bool vtkSurfaceSplatRasterizer::RegionHidden(
+  const glm::dvec3& low, const glm::dvec3& high, double reach, double nearDepth) const
+{
+  // The region's box, widened by its splats' reach along their axes, in eye space: its corners'
+  // nearest depth and projected box, widened by the low-pass filter's reach.
+  const Camera& view = this->CurrentFrame.View;
+  const glm::dmat4& modelToEye = view.ModelToEye;
+  const double scale = std::max({ glm::length(glm::dvec3(modelToEye[0])),
+    glm::length(glm::dvec3(modelToEye[1])), glm::length(glm::dvec3(modelToEye[2])) });
+  const glm::dvec3 widening(std::max(std::sqrt(this->Cutoff), 1.0) * reach);
+  const glm::dvec3 corners[2] = { low - widening, high + widening };
+  double nearest = std::numeric_limits<double>::infinity();
+  glm::dvec2 lo(std::numeric_limits<double>::infinity());
+  glm::dvec2 hi(-std::numeric_limits<double>::infinity());
+  const glm::dvec2 viewport(view.Viewport);
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec3 p(modelToEye *
+      glm::dvec4(corners[corner & 1].x, corners[(corner >> 1) & 1].y, corners[corner >> 2].z, 1.0));
+    nearest = std::min(nearest, -p.z);
+    splat::PointProjection projection;
+    if (!splat::ProjectPoint(view.EyeToClip, viewport, p, projection))
+    {
+      return false;
+    }
+    lo = glm::min(lo, projection.Center);
+    hi = glm::max(hi, projection.Center);
+  }
+  if (!(nearest > nearDepth))
+  {
+    return false;
+  }
+  const double margin = this->Internal->Grid.Reach + 1.0;
+  const int x0 = static_cast<int>(std::max(std::floor(lo.x - margin), 0.0));
+  const int y0 = static_cast<int>(std::max(std::floor(lo.y - margin), 0.0));
+  const int x1 = static_cast<int>(std::min(std::ceil(hi.x + margin), viewport.x - 1.0));
+  const int y1 = static_cast<int>(std::min(std::ceil(hi.y + margin), viewport.y - 1.0));
+  // Hidden where every pixel it may reach has a fully covered opaque front surface nearer than
+  // the region by more than the z threshold of its splats: they would be dropped behind it,
+  // and nothing behind a fully covered opaque surface shows.
+  const float farthest = static_cast<float>(nearest - this->DepthThreshold * scale * reach);
+  const float full = this->CurrentFrame.FullCoverage;
+  for (int y = y0; y <= y1; ++y)
+  {
+    for (int x = x0; x <= x1; ++x)
+    {
+      const std::size_t pixel = static_cast<std::size_t>(y) * view.Viewport.x + x;
+      const Fragment& f = this->Fragments[pixel * this->Layers];
+      if (this->FragmentCounts[pixel] == 0 || f.Shaded() || !(f.Weight >= full) ||
+        !(f.Alpha >= OpaqueAlpha * f.Weight) || !(f.Depth < farthest))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -916,6 +1017,8 @@ void vtkSurfaceSplatRasterizer::SumMinifiedSplats(vtkIdType chunks)
   const int layers = this->Layers;
   cells.resize(static_cast<std::size_t>(grid.Width) * grid.Height * layers);
   cellCounts.resize(static_cast<std::size_t>(grid.Width) * grid.Height);
+  std::vector<glm::ivec2>& spans = this->Internal->CellSpans;
+  spans.resize(grid.Height);
   vtkSMPTools::For(0, grid.Bands, 1,
     [&](vtkIdType bandBegin, vtkIdType bandEnd)
     {
@@ -923,6 +1026,9 @@ void vtkSurfaceSplatRasterizer::SumMinifiedSplats(vtkIdType chunks)
       const std::size_t last = std::min(
         static_cast<std::size_t>(bandEnd) * BandHeight * grid.Width, cellCounts.size());
       std::fill(cellCounts.begin() + first, cellCounts.begin() + last, 0);
+      const int rowBegin = static_cast<int>(bandBegin) * BandHeight;
+      const int rowEnd = std::min(static_cast<int>(bandEnd) * BandHeight, grid.Height);
+      std::fill(spans.begin() + rowBegin, spans.begin() + rowEnd, EmptySpan);
       for (vtkIdType b = bandBegin; b < bandEnd; ++b)
       {
         for (vtkIdType chunk = 0; chunk < chunks; ++chunk)
@@ -931,6 +1037,8 @@ void vtkSurfaceSplatRasterizer::SumMinifiedSplats(vtkIdType chunks)
           {
             const int x = static_cast<int>(std::floor(m.CenterX));
             const int y = static_cast<int>(std::floor(m.CenterY));
+            glm::ivec2& span = spans[y + grid.Reach];
+            span = glm::ivec2(std::min(span.x, x + grid.Reach), std::max(span.y, x + grid.Reach));
             const std::size_t cell =
               static_cast<std::size_t>(y + grid.Reach) * grid.Width + (x + grid.Reach);
             Deposit(&cells[cell * layers], cellCounts[cell], layers, m, m.CenterX - (x + 0.5f),
@@ -963,6 +1071,7 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
   const Internals::CellGrid& grid = this->Internal->Grid;
   const std::vector<PixelCell>& cells = this->Internal->Cells;
   const std::vector<std::uint8_t>& cellCounts = this->Internal->CellCounts;
+  const std::vector<glm::ivec2>& spans = this->Internal->CellSpans;
   const int width = this->CurrentFrame.View.Viewport.x;
   const int height = this->CurrentFrame.View.Viewport.y;
   const int layers = this->Layers;
@@ -979,7 +1088,16 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
       vtkIdType written = 0;
       for (int y = rowBegin; y < rowEnd; ++y)
       {
-        for (int x = 0; x < width; ++x)
+        // The pixels of the row that a filled cell reaches: pixel x gathers cells x to
+        // x + 2 reach of rows y to y + 2 reach (the grid is padded by reach).
+        glm::ivec2 span = EmptySpan;
+        for (int dy = 0; dy <= 2 * reach; ++dy)
+        {
+          span = glm::ivec2(std::min(span.x, spans[y + dy].x), std::max(span.y, spans[y + dy].y));
+        }
+        const int xBegin = std::max(span.x - 2 * reach, 0);
+        const int xEnd = std::min(span.y, width - 1);
+        for (int x = xBegin; x <= xEnd; ++x)
         {
           const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
           Fragment* pixelFragments = &this->Fragments[pixel * layers];
@@ -1178,6 +1296,7 @@ void vtkSurfaceSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SplattedCount: " << this->SplattedCount << "\n";
   os << indent << "MinifiedCount: " << this->MinifiedCount << "\n";
   os << indent << "MergedCount: " << this->MergedCount << "\n";
+  os << indent << "HiddenCount: " << this->HiddenCount << "\n";
   os << indent << "FrustumCulledCount: " << this->FrustumCulledCount << "\n";
   os << indent << "BackfaceCulledCount: " << this->BackfaceCulledCount << "\n";
   os << indent << "NegligibleCount: " << this->NegligibleCount << "\n";

@@ -53,6 +53,7 @@
 
 class vtkSurfelHierarchy;
 
+
 class SPLATRENDERING_EXPORT vtkSurfaceSplatRasterizer : public vtkObject
 {
 public:
@@ -214,10 +215,13 @@ public:
    * eye, wholly outside the near/far range, footprint outside the viewport), face away with
    * BackfaceCulling on, or are edge-on (negligible weight); and pixel contributions written.
    * A splat is a surfel or, with a hierarchy, a merged node of it: MergedCount is the number
-   * of surfels the merged nodes among the splats stand for.
+   * of surfels the merged nodes among the splats stand for, and HiddenCount the splats left
+   * out because they face away in a region of the hierarchy found hidden behind nearer, fully
+   * covered surfaces.
    */
   vtkGetMacro(SplattedCount, vtkIdType);
   vtkGetMacro(MergedCount, vtkIdType);
+  vtkGetMacro(HiddenCount, vtkIdType);
   vtkGetMacro(MinifiedCount, vtkIdType);
   vtkGetMacro(FrustumCulledCount, vtkIdType);
   vtkGetMacro(BackfaceCulledCount, vtkIdType);
@@ -234,6 +238,10 @@ protected:
   /// Steps 2b and 2c for the minified splats (see SetMinifiedVariance): their sums per pixel,
   /// then each pixel's gather of its neighbors' sums (returns the contributions written).
   void SumMinifiedSplats(vtkIdType chunks);
+  /// Whether the fragments drawn so far hide a region of back-facing splats: splat centers in
+  /// a box in model coordinates, axes up to `reach` long.
+  bool RegionHidden(
+    const glm::dvec3& low, const glm::dvec3& high, double reach, double nearDepth) const;
   vtkIdType GatherMinifiedSplats(const float* sceneDepths);
   void AddLayered(Fragment* fragments, std::uint8_t& count, int x, int y, float z, float w,
     const float* normal, const ScreenSplat& s) const;
@@ -254,6 +262,7 @@ protected:
   vtkIdType SplattedCount = 0;
   vtkIdType MinifiedCount = 0;
   vtkIdType MergedCount = 0;
+  vtkIdType HiddenCount = 0;
   vtkIdType FrustumCulledCount = 0;
   vtkIdType BackfaceCulledCount = 0;
   vtkIdType NegligibleCount = 0;

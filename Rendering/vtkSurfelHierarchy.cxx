@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSurfelHierarchy.h"
 
+#include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
 
@@ -20,7 +21,7 @@ constexpr int CellBits = 20;
 
 // Blocks hold about this many surfels: enough that a frame's choice per block costs nothing,
 // few enough that a block's nearest depth is close to each of its surfels' depths.
-constexpr vtkIdType BlockSurfels = 4096;
+constexpr vtkIdType BlockSurfels = 128;
 
 // A level whose node count falls by less than this factor merges too little to pay for itself:
 // the hierarchy stops there (scattered points far apart for their size).
@@ -152,12 +153,12 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
   this->LevelNodes.clear();
   this->LevelOffsets.clear();
   for (std::vector<float>* v : { &this->Normals, &this->Axes0, &this->Axes1, &this->Colors,
-         &this->MassScales, &this->BlockRadii, &this->BlockAxes })
+         &this->MassScales, &this->BlockAxes })
   {
     v->clear();
   }
   this->Positions.clear();
-  this->BlockCenters.clear();
+  this->Blocks.clear();
   this->Modified();
   if (n == 0 || n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
   {
@@ -322,11 +323,10 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
     below = std::move(moments);
   }
 
-  // Blocks: the top level's nodes, with their bounding spheres and their largest axis per level.
+  // Blocks: the top level's nodes, with their bounding spheres, normal cones and largest axes.
   const std::vector<std::uint32_t>& blocks = this->LevelNodes.back();
   const std::size_t blockCount = blocks.size() - 1;
-  this->BlockCenters.resize(3 * blockCount);
-  this->BlockRadii.resize(blockCount);
+  this->Blocks.resize(blockCount);
   this->BlockAxes.assign(blockCount * (levels + 1), 0.0f);
   auto axisLength = [](const float* axis)
   { return std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]); };
@@ -335,8 +335,10 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
     {
       for (vtkIdType b = begin; b < end; ++b)
       {
+        Block& block = this->Blocks[b];
         glm::dvec3 low(std::numeric_limits<double>::infinity());
         glm::dvec3 high(-std::numeric_limits<double>::infinity());
+        glm::dvec3 normals(0.0);
         float* axes = &this->BlockAxes[b * (levels + 1)];
         for (std::uint32_t k = blocks[b]; k < blocks[b + 1]; ++k)
         {
@@ -344,9 +346,20 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
           const double* p = surfels.Positions + 3 * i;
           low = glm::min(low, glm::dvec3(p[0], p[1], p[2]));
           high = glm::max(high, glm::dvec3(p[0], p[1], p[2]));
+          const float* n = surfels.Normals + 3 * i;
+          normals += glm::dvec3(n[0], n[1], n[2]);
           axes[0] = std::max(
             { axes[0], axisLength(surfels.Axes0 + 3 * i), axisLength(surfels.Axes1 + 3 * i) });
         }
+        block.Reach = axes[0];
+        block.ConeAxis = glm::length(normals) > 0.0 ? glm::normalize(normals) : glm::dvec3(0.0);
+        double cosine = 1.0;
+        for (std::uint32_t k = blocks[b]; k < blocks[b + 1]; ++k)
+        {
+          const float* n = surfels.Normals + 3 * this->Order[k];
+          cosine = std::min(cosine, glm::dot(block.ConeAxis, glm::dvec3(n[0], n[1], n[2])));
+        }
+        block.ConeAngle = std::acos(std::max(-1.0, cosine));
         for (int level = 1; level <= levels; ++level)
         {
           const std::vector<std::uint32_t>& starts = this->LevelNodes[level - 1];
@@ -360,15 +373,14 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
             const double spacing =
               this->MassScales[out] * major * axisLength(&this->Axes1[3 * out]);
             squares += std::max(major * major, spacing);
+            block.Reach = std::max(block.Reach, major);
           }
           axes[level] = static_cast<float>(std::sqrt(squares / (last - first)));
         }
-        const glm::dvec3 center = 0.5 * (low + high);
-        for (int c = 0; c < 3; ++c)
-        {
-          this->BlockCenters[3 * b + c] = center[c];
-        }
-        this->BlockRadii[b] = static_cast<float>(0.5 * glm::length(high - low));
+        block.Low = low;
+        block.High = high;
+        block.Center = 0.5 * (low + high);
+        block.Radius = 0.5 * glm::length(high - low);
       }
     });
 }
@@ -377,7 +389,25 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
 vtkIdType vtkSurfelHierarchy::Select(const vtkSurfaceSplatRasterizer::Camera& camera,
   double variance, std::vector<std::uint32_t>& items) const
 {
+  return this->SelectBlocks(camera, variance, items, nullptr);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkSurfelHierarchy::Select(const vtkSurfaceSplatRasterizer::Camera& camera,
+  double variance, std::vector<std::uint32_t>& items, std::vector<BackRegion>& backRegions) const
+{
+  return this->SelectBlocks(camera, variance, items, &backRegions);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Camera& camera,
+  double variance, std::vector<std::uint32_t>& items, std::vector<BackRegion>* backRegions) const
+{
   items.clear();
+  if (backRegions)
+  {
+    backRegions->clear();
+  }
   const int levels = this->GetNumberOfLevels();
   if (levels == 1)
   {
@@ -387,8 +417,13 @@ vtkIdType vtkSurfelHierarchy::Select(const vtkSurfaceSplatRasterizer::Camera& ca
   // (without the division for a parallel projection): scale is the model-to-eye matrix's
   // largest column norm.
   const glm::dmat4& modelToEye = camera.ModelToEye;
-  const double scale = std::max({ glm::length(glm::dvec3(modelToEye[0])),
-    glm::length(glm::dvec3(modelToEye[1])), glm::length(glm::dvec3(modelToEye[2])) });
+  const glm::dvec3 columns(glm::length(glm::dvec3(modelToEye[0])),
+    glm::length(glm::dvec3(modelToEye[1])), glm::length(glm::dvec3(modelToEye[2])));
+  const double scale = std::max({ columns.x, columns.y, columns.z });
+  // Normal cones keep their angles only without a non-uniform scale.
+  const bool cones = backRegions &&
+    std::max({ columns.x, columns.y, columns.z }) - std::min({ columns.x, columns.y, columns.z }) <=
+      1e-9 * scale;
   const glm::dmat4& P = camera.EyeToClip;
   const bool perspective = P[2][3] != 0.0;
   const double pixelsPerUnit =
@@ -426,7 +461,9 @@ vtkIdType vtkSurfelHierarchy::Select(const vtkSurfaceSplatRasterizer::Camera& ca
             glm::dvec4(this->Positions[3 * node], this->Positions[3 * node + 1],
               this->Positions[3 * node + 2], 1.0))
         : glm::dvec3(0.0, 0.0, -1.0);
-      if (std::abs(glm::dot(normal, view)) < GrazingCosine * glm::length(normal) * glm::length(view))
+      const double cosine = glm::dot(normal, view);
+      if (cosine * cosine <
+        GrazingCosine * GrazingCosine * glm::dot(normal, normal) * glm::dot(view, view))
       {
         for (std::uint32_t k = starts[j]; k < starts[j + 1]; ++k)
         {
@@ -439,19 +476,44 @@ vtkIdType vtkSurfelHierarchy::Select(const vtkSurfaceSplatRasterizer::Camera& ca
       }
     }
   };
+  // Whether every normal of block b faces away from every point of its sphere: the angle
+  // between its cone's axis and the view direction to its center, plus the cone's half angle,
+  // plus the angle the sphere subtends, stays below 90 degrees.
+  auto facesAway = [&](const Block& block, const glm::dvec3& center)
+  {
+    if (!cones || glm::dot(block.ConeAxis, block.ConeAxis) == 0.0)
+    {
+      return false;
+    }
+    double subtended = 0.0;
+    glm::dvec3 view(0.0, 0.0, -1.0);
+    if (perspective)
+    {
+      const double distance = glm::length(center);
+      const double radius = scale * block.Radius;
+      if (!(distance > radius))
+      {
+        return false;
+      }
+      subtended = std::asin(radius / distance);
+      view = center / distance;
+    }
+    const double axis = std::acos(
+      std::min(1.0, std::max(-1.0, glm::dot(glm::normalize(normalToEye * block.ConeAxis), view))));
+    return axis + block.ConeAngle + subtended < 0.5 * vtkMath::Pi() - 1e-3;
+  };
 
-  std::vector<int> chosen(blockCount);
-  std::vector<std::size_t> offsets(blockCount + 1, 0);
+  std::vector<std::vector<std::uint32_t>> blockItems(blockCount);
+  std::vector<char> away(blockCount);
   std::vector<vtkIdType> merged(blockCount, 0);
   vtkSMPTools::For(0, blockCount,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType b = begin; b < end; ++b)
       {
-        const glm::dvec3 center = glm::dvec3(modelToEye *
-          glm::dvec4(this->BlockCenters[3 * b], this->BlockCenters[3 * b + 1],
-            this->BlockCenters[3 * b + 2], 1.0));
-        const double nearest = -center.z - scale * this->BlockRadii[b];
+        const Block& block = this->Blocks[b];
+        const glm::dvec3 center = glm::dvec3(modelToEye * glm::dvec4(block.Center, 1.0));
+        const double nearest = -center.z - scale * block.Radius;
         const double pixels = perspective
           ? (nearest > 0.0 ? scale * pixelsPerUnit / nearest : std::numeric_limits<double>::infinity())
           : scale * pixelsPerUnit;
@@ -464,29 +526,48 @@ vtkIdType vtkSurfelHierarchy::Select(const vtkSurfaceSplatRasterizer::Camera& ca
             break;
           }
         }
-        chosen[b] = level;
+        away[b] = facesAway(block, center);
         visit(b, level,
-          [&](std::uint32_t, std::uint32_t surfels)
+          [&](std::uint32_t item, std::uint32_t surfels)
           {
-            ++offsets[b + 1];
+            blockItems[b].push_back(item);
             merged[b] += surfels;
           });
       }
     });
-  vtkIdType represented = 0;
-  for (vtkIdType b = 0; b < blockCount; ++b)
+  // The blocks that may face the eye first, then those facing away, each in block order.
+  std::vector<vtkIdType> order;
+  for (const char facing : { 0, 1 })
   {
-    represented += merged[b];
-    offsets[b + 1] += offsets[b];
+    for (vtkIdType b = 0; b < blockCount; ++b)
+    {
+      if (away[b] == facing)
+      {
+        order.push_back(b);
+      }
+    }
   }
-  items.resize(offsets[blockCount]);
+  std::vector<std::size_t> offsets(blockCount, 0);
+  std::size_t total = 0;
+  vtkIdType represented = 0;
+  for (const vtkIdType b : order)
+  {
+    offsets[b] = total;
+    total += blockItems[b].size();
+    represented += merged[b];
+    if (away[b])
+    {
+      const Block& block = this->Blocks[b];
+      backRegions->push_back({ offsets[b], total, block.Low, block.High, block.Reach });
+    }
+  }
+  items.resize(total);
   vtkSMPTools::For(0, blockCount,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType b = begin; b < end; ++b)
       {
-        std::uint32_t* out = items.data() + offsets[b];
-        visit(b, chosen[b], [&out](std::uint32_t item, std::uint32_t) { *out++ = item; });
+        std::copy(blockItems[b].begin(), blockItems[b].end(), items.begin() + offsets[b]);
       }
     });
   return represented;

@@ -33,6 +33,8 @@
 #include "vtkObject.h"
 #include "vtkSurfaceSplatRasterizer.h" // For Surfels, Camera
 
+#include <glm/glm.hpp> // For the regions' spheres
+
 #include <cstdint> // For std::uint32_t
 #include <vector>  // For the levels
 
@@ -74,6 +76,28 @@ public:
   vtkIdType Select(const vtkSurfaceSplatRasterizer::Camera& camera, double variance,
     std::vector<std::uint32_t>& items) const;
 
+  /**
+   * A region whose splats all face away from the eye (with two-sided lighting they are drawn,
+   * and hidden wherever a nearer surface covers them): items [Begin, End) of a selection, the
+   * box in model coordinates that holds their splats' centers, and the largest axis of its
+   * splats.
+   */
+  struct BackRegion
+  {
+    std::size_t Begin = 0;
+    std::size_t End = 0;
+    glm::dvec3 Low{ 0.0 };
+    glm::dvec3 High{ 0.0 };
+    double Reach = 0.0;
+  };
+
+  /**
+   * Select() that also lists the regions whose splats all face away from the eye: their items
+   * come last, region by region, after those of the regions that may face it.
+   */
+  vtkIdType Select(const vtkSurfaceSplatRasterizer::Camera& camera, double variance,
+    std::vector<std::uint32_t>& items, std::vector<BackRegion>& backRegions) const;
+
 protected:
   vtkSurfelHierarchy() = default;
   ~vtkSurfelHierarchy() override = default;
@@ -81,6 +105,9 @@ protected:
 private:
   vtkSurfelHierarchy(const vtkSurfelHierarchy&) = delete;
   void operator=(const vtkSurfelHierarchy&) = delete;
+
+  vtkIdType SelectBlocks(const vtkSurfaceSplatRasterizer::Camera& camera, double variance,
+    std::vector<std::uint32_t>& items, std::vector<BackRegion>* backRegions) const;
 
   vtkIdType SurfelCount = 0;
   double Spacing = 0.0;
@@ -97,10 +124,21 @@ private:
   std::vector<float> Axes1;
   std::vector<float> Colors;
   std::vector<float> MassScales;
-  // Per block (a node of the top level): its surfels' bounding sphere, and per level its
-  // largest axis, block by block (level 0 first).
-  std::vector<double> BlockCenters;
-  std::vector<float> BlockRadii;
+  // A node of the top level: its surfels' bounding box and sphere (of their centers), the
+  // largest axis of its nodes at any level, and the cone of its surfels' normals.
+  struct Block
+  {
+    glm::dvec3 Low{ 0.0 };
+    glm::dvec3 High{ 0.0 };
+    glm::dvec3 Center{ 0.0 };
+    double Radius = 0.0;
+    double Reach = 0.0;
+    glm::dvec3 ConeAxis{ 0.0 };
+    double ConeAngle = 0.0; // radians
+  };
+  std::vector<Block> Blocks;
+  // Per block, per level (0 first): the root mean square of its nodes' larger axis or
+  // spacing, which decides the level a frame draws.
   std::vector<float> BlockAxes;
 };
 

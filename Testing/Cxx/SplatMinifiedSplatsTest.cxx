@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -67,6 +68,7 @@ struct Frame
   vtkIdType Splatted = 0;
   vtkIdType Minified = 0;
   vtkIdType Merged = 0;
+  vtkIdType Hidden = 0;
 };
 
 enum class Path
@@ -102,7 +104,7 @@ Frame Draw(const SurfelGrid& surfels, const vtkSurfaceSplatRasterizer::Camera& c
   }
   rasterizer->Render(view, camera, lights, material);
   return { rasterizer->GetColors(), rasterizer->GetSplattedCount(),
-    rasterizer->GetMinifiedCount(), rasterizer->GetMergedCount() };
+    rasterizer->GetMinifiedCount(), rasterizer->GetMergedCount(), rasterizer->GetHiddenCount() };
 }
 
 // Root mean square difference of channel `channel` (0..3) over the pixels where `where` holds.
@@ -187,9 +189,10 @@ TEST(MinifiedSplats, SphereOfSubpixelSplatsMatchesTheExactKernels)
   else
   {
     // Merged nodes 0.9 pixels apart, the surfels themselves at grazing angles: under 40% of
-    // the splats.
+    // the splats; and of the back half, the regions that the front half hides left out.
     EXPECT_GT(minified.Merged, 0.85 * 400000);
     EXPECT_LT(minified.Splatted, 0.4 * exact.Splatted);
+    EXPECT_GT(minified.Hidden, 0.2 * minified.Splatted);
   }
   const double color = ColorRMSE(exact, minified);
   const double alpha = RMSE(exact, minified, 3, [](std::size_t) { return true; });
@@ -198,15 +201,19 @@ TEST(MinifiedSplats, SphereOfSubpixelSplatsMatchesTheExactKernels)
   const double radius = SilhouetteRadius(0.3, 1.8);
   const double radiusExact = CoveredRadius(exact);
   const double radiusMinified = CoveredRadius(minified);
-  std::printf("sphere, %s: %lld splats, color RMSE %.4f, alpha RMSE %.4f, partly covered "
-              "pixels %zu (exact %zu), covered radius %.2f (exact %.2f, true %.2f)\n",
-    Name(path), static_cast<long long>(minified.Splatted), color, alpha, edgeMinified, edgeExact,
+  std::printf("sphere, %s: %lld splats (%lld hidden), color RMSE %.4f, alpha RMSE %.4f, "
+              "partly covered pixels %zu (exact %zu), covered radius %.2f (exact %.2f, true "
+              "%.2f)\n",
+    Name(path), static_cast<long long>(minified.Splatted),
+    static_cast<long long>(minified.Hidden), color, alpha, edgeMinified, edgeExact,
     radiusMinified, radiusExact, radius);
   EXPECT_LT(color, 0.015);
   EXPECT_LT(alpha, 0.06);
   EXPECT_GT(edgeExact, 100u);
   EXPECT_GT(edgeMinified, 0.7 * edgeExact);
-  EXPECT_LT(edgeMinified, 2.0 * edgeExact);
+  // Merged nodes leave the silhouette a little wider than the per-pixel sums do; drawn by
+  // merged nodes alone, without the surfels at grazing angles, it is ragged (8 times).
+  EXPECT_LT(edgeMinified, (path == Path::Minified ? 2.0 : 2.5) * edgeExact);
   EXPECT_NEAR(radiusMinified, radiusExact, 0.5);
   EXPECT_NEAR(radiusExact, radius, 2.0);
   }
@@ -297,6 +304,51 @@ TEST(MinifiedSplats, CheckerboardAtTheHorizonMatchesTheExactKernels)
       static_cast<long long>(minified.Splatted), static_cast<long long>(minified.Merged), color);
     EXPECT_LT(color, 0.02);
   }
+}
+
+// A bowl (a hemisphere seen from its open side, tilted): its inside faces away from the eye
+// and nothing hides it, so no region of it is left out and the level of detail draws it as the
+// summed minified splats do.
+TEST(MinifiedSplats, VisibleBackFacesAreNotHidden)
+{
+  SurfelGrid bowl = SurfelSphere(400000, 0.3, glm::dvec3(0.0));
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < bowl.Normals.size() / 3; ++i)
+  {
+    if (bowl.Normals[3 * i + 2] < 0.0f)
+    {
+      for (auto member : { &SurfelGrid::Normals, &SurfelGrid::Axes0, &SurfelGrid::Axes1,
+             &SurfelGrid::Colors })
+      {
+        std::copy_n((bowl.*member).begin() + 3 * i, 3, (bowl.*member).begin() + 3 * kept);
+      }
+      std::copy_n(bowl.Positions.begin() + 3 * i, 3, bowl.Positions.begin() + 3 * kept);
+      ++kept;
+    }
+  }
+  for (auto member : { &SurfelGrid::Normals, &SurfelGrid::Axes0, &SurfelGrid::Axes1,
+         &SurfelGrid::Colors })
+  {
+    (bowl.*member).resize(3 * kept);
+  }
+  bowl.Positions.resize(3 * kept);
+  vtkSurfaceSplatRasterizer::Camera camera;
+  camera.ModelToEye =
+    glm::lookAt(glm::dvec3(0.0, 0.8, 1.5), glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0));
+  camera.EyeToClip = glm::perspective(glm::radians(30.0), 1.0, 0.1, 10.0);
+  camera.Viewport = glm::ivec2(Size, Size);
+  const Frame minified = Draw(bowl, camera, Path::Minified);
+  const Frame detail = Draw(bowl, camera, Path::LevelOfDetail);
+  const double color = ColorRMSE(minified, detail);
+  const double alpha = RMSE(minified, detail, 3, [](std::size_t) { return true; });
+  std::printf("bowl: %lld of %lld surfels merged, %lld splats hidden, color RMSE %.4f, alpha "
+              "RMSE %.4f against the summed minified splats\n",
+    static_cast<long long>(detail.Merged), static_cast<long long>(kept),
+    static_cast<long long>(detail.Hidden), color, alpha);
+  EXPECT_GT(detail.Merged, 0.5 * kept);
+  EXPECT_EQ(detail.Hidden, 0);
+  EXPECT_LT(color, 0.015);
+  EXPECT_LT(alpha, 0.03);
 }
 
 // The minified splats' sums do not depend on the number of threads.
