@@ -309,7 +309,7 @@ vtkIdType vtkSurfaceSplatMapper::GetNumberOfCulledSplats()
     return -1;
   }
   return this->Rasterizer->GetFrustumCulledCount() + this->Rasterizer->GetBackfaceCulledCount() +
-    this->Rasterizer->GetNegligibleCount();
+    this->Rasterizer->GetNegligibleCount() + this->Rasterizer->GetHiddenCount();
 }
 
 //------------------------------------------------------------------------------

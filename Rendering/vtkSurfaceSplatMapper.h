@@ -282,8 +282,9 @@ public:
    * What the last render did: points given to the rasterizer; splats drawn; surfels drawn
    * through merged splats of the level of detail (see LevelOfDetail; a merged splat counts
    * once among the splats drawn and left out); splats left out (in total, and outside the
-   * frustum, back-facing with backface culling, or negligible); input points skipped as
-   * invalid; and the wall-clock time of the render in milliseconds.
+   * frustum, back-facing with backface culling, or negligible; the total also counts the
+   * back-facing splats of the level of detail found hidden behind nearer surfaces); input
+   * points skipped as invalid; and the wall-clock time of the render in milliseconds.
    * The OpenGL backend leaves splats out in its vertex shader without counting them: the
    * splat counts are -1 after an OpenGL render.
    */
