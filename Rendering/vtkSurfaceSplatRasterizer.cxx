@@ -32,6 +32,9 @@ constexpr int BandHeight = 16;
 // A row of cells that holds none.
 const glm::ivec2 EmptySpan(std::numeric_limits<int>::max(), std::numeric_limits<int>::min());
 
+// The share of the surfels that a hierarchy's selection must merge for the frame to draw it.
+constexpr double MinimumMergedShare = 0.25;
+
 // Accumulated alpha beyond which the fragments behind change no 8-bit color.
 constexpr float OpaqueAlpha = 1.0f - 1e-4f;
 
@@ -613,7 +616,14 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   this->MergedCount = hierarchy
     ? hierarchy->Select(camera, this->MinifiedVariance, items, backRegions)
     : vtkIdType(0);
-  hierarchy = this->MergedCount > 0 ? hierarchy : nullptr;
+  // The hierarchy's order reads the surfels out of their order in memory: where it merges
+  // few of them, drawing them in order is faster.
+  if (this->MergedCount < MinimumMergedShare * static_cast<double>(surfels.Count))
+  {
+    hierarchy = nullptr;
+    this->MergedCount = 0;
+    backRegions.clear();
+  }
   const Surfels merged = hierarchy ? hierarchy->GetMergedSurfels() : Surfels();
   const vtkIdType count = static_cast<vtkIdType>(hierarchy ? items.size() : surfels.Count);
   std::vector<std::vector<MinifiedSplat>>& minified = this->Internal->MinifiedSplats;
@@ -644,164 +654,145 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   // Steps 1 and 2 for splats [first, last).
   auto drawRange = [&](vtkIdType first, vtkIdType last)
   {
-  // 1. Setup, in eye space, chunk by chunk.
-  const vtkIdType chunks = (last - first + ChunkSize - 1) / ChunkSize;
-  minified.resize(minify ? chunks * cellBands : 0);
-  vtkSMPTools::For(0, chunks, 1,
-    [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
-    {
-      const vtkIdType begin = first + chunkBegin * ChunkSize;
-      const vtkIdType end = std::min(first + chunkEnd * ChunkSize, last);
-      for (vtkIdType c = chunkBegin * cellBands; minify && c < chunkEnd * cellBands; ++c)
+    // 1. Setup, in eye space, chunk by chunk.
+    const vtkIdType chunks = (last - first + ChunkSize - 1) / ChunkSize;
+    minified.resize(minify ? chunks * cellBands : 0);
+    vtkSMPTools::For(0, chunks, 1,
+      [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
       {
-        minified[c].clear();
-      }
-      for (vtkIdType k = begin; k < end; ++k)
-      {
-        std::uint8_t& reason = reasons[k];
-        reason = OutsideFrustum;
-        // Splat k: surfel i, or merged node i of the hierarchy.
-        const std::size_t item = hierarchy ? items[k] : static_cast<std::size_t>(k);
-        const bool node = item >= surfels.Count;
-        const Surfels& source = node ? merged : surfels;
-        const std::size_t i = node ? item - surfels.Count : item;
-        const double massScale = node ? hierarchy->GetMassScales()[i] : 1.0;
-        const double* position = source.Positions + 3 * i;
-        const float* n = source.Normals + 3 * i;
-        const float* axis0 = source.Axes0 + 3 * i;
-        const float* axis1 = source.Axes1 + 3 * i;
-        const glm::dvec3 p =
-          axisToEye * glm::dvec3(position[0], position[1], position[2]) + eyeTranslation;
-        const glm::dvec3 a0 = axisToEye * glm::dvec3(axis0[0], axis0[1], axis0[2]);
-        const glm::dvec3 a1 = axisToEye * glm::dvec3(axis1[0], axis1[1], axis1[2]);
-        // Culled when the whole splat lies outside the depth range: a large one reaches past
-        // the near or far plane from a center outside it (its fragments are clipped there).
-        const double depthExtent = depthReach * (std::abs(a0.z) + std::abs(a1.z));
-        if (!(-p.z + depthExtent >= nearDepth && -p.z - depthExtent <= farDepth))
+        const vtkIdType begin = first + chunkBegin * ChunkSize;
+        const vtkIdType end = std::min(first + chunkEnd * ChunkSize, last);
+        for (vtkIdType c = chunkBegin * cellBands; minify && c < chunkEnd * cellBands; ++c)
         {
-          continue;
+          minified[c].clear();
         }
-        splat::SurfelProjection projection;
-        if (!splat::ProjectSurfel(
-              eyeToClip, viewport, p, footprintScale * a0, footprintScale * a1, projection))
+        for (vtkIdType k = begin; k < end; ++k)
         {
-          continue;
-        }
-        glm::dvec3 normal = glm::normalize(normalToEye * glm::dvec3(n[0], n[1], n[2]));
-        const glm::dvec3 view = rays.Perspective ? p : glm::dvec3(0.0, 0.0, -1.0);
-        const bool backFacing = glm::dot(normal, view) > 0.0;
-        if (backFacing && cullBackFaces)
-        {
-          reason = BackFacing;
-          continue;
-        }
-        if (!(splat::Foreshortening(projection) >= splat::EdgeOnForeshortening))
-        {
-          reason = Negligible;
-          continue;
-        }
-        const glm::dmat2 warped =
-          minify ? splat::WarpedBasisVariance(projection) : glm::dmat2(0.0);
-        if (minify && splat::LargestEigenvalue(warped) <= this->MinifiedVariance)
-        {
-          // Below a pixel, it is drawn whole where its center is in the depth range, or not.
-          const glm::dvec2 cell = glm::floor(projection.Center);
-          if (-p.z >= nearDepth && -p.z <= farDepth && cell.x >= -reach &&
-            cell.x < width + reach && cell.y >= -reach && cell.y < height + reach)
+          std::uint8_t& reason = reasons[k];
+          reason = OutsideFrustum;
+          // Splat k: surfel i, or merged node i of the hierarchy.
+          const std::size_t item = hierarchy ? items[k] : static_cast<std::size_t>(k);
+          const bool node = item >= surfels.Count;
+          const Surfels& source = node ? merged : surfels;
+          const std::size_t i = node ? item - surfels.Count : item;
+          const double massScale = node ? hierarchy->GetMassScales()[i] : 1.0;
+          const double* position = source.Positions + 3 * i;
+          const float* n = source.Normals + 3 * i;
+          const float* axis0 = source.Axes0 + 3 * i;
+          const float* axis1 = source.Axes1 + 3 * i;
+          const glm::dvec3 p =
+            axisToEye * glm::dvec3(position[0], position[1], position[2]) + eyeTranslation;
+          const glm::dvec3 a0 = axisToEye * glm::dvec3(axis0[0], axis0[1], axis0[2]);
+          const glm::dvec3 a1 = axisToEye * glm::dvec3(axis1[0], axis1[1], axis1[2]);
+          // Culled when the whole splat lies outside the depth range: a large one reaches past
+          // the near or far plane from a center outside it (its fragments are clipped there).
+          const double depthExtent = depthReach * (std::abs(a0.z) + std::abs(a1.z));
+          if (!(-p.z + depthExtent >= nearDepth && -p.z - depthExtent <= farDepth))
           {
-            const int band = (static_cast<int>(cell.y) + reach) / BandHeight;
-            minified[((k - first) / ChunkSize) * cellBands + band].push_back(
-              MakeMinifiedSplat(p, a0, a1, projection, warped, cell, backFacing ? -normal : normal,
-                source.Colors + 3 * i, massScale, depthThreshold));
-            reason = Minified;
+            continue;
           }
-          continue;
-        }
-        const splat::ResamplingKernel kernel =
-          splat::MakeResamplingKernel(projection, cutoff, filter);
-        glm::ivec4 box;
-        if (rectangles ? !RectanglePixels(eyeToClip, viewport, p, a0, a1, box)
-                       : !splat::CoveredPixels(kernel.Center, kernel.HalfExtent, width, height, box))
-        {
-          continue;
-        }
-        ScreenSplat& s = splats[k];
-        s.X0 = box.x;
-        s.X1 = box.y;
-        s.Y0 = box.z;
-        s.Y1 = box.w;
-        reason = Kept;
+          splat::SurfelProjection projection;
+          if (!splat::ProjectSurfel(
+                eyeToClip, viewport, p, footprintScale * a0, footprintScale * a1, projection))
+          {
+            continue;
+          }
+          glm::dvec3 normal = glm::normalize(normalToEye * glm::dvec3(n[0], n[1], n[2]));
+          const glm::dvec3 view = rays.Perspective ? p : glm::dvec3(0.0, 0.0, -1.0);
+          const bool backFacing = glm::dot(normal, view) > 0.0;
+          if (backFacing && cullBackFaces)
+          {
+            reason = BackFacing;
+            continue;
+          }
+          if (!(splat::Foreshortening(projection) >= splat::EdgeOnForeshortening))
+          {
+            reason = Negligible;
+            continue;
+          }
+          const glm::dmat2 warped =
+            minify ? splat::WarpedBasisVariance(projection) : glm::dmat2(0.0);
+          if (minify && splat::LargestEigenvalue(warped) <= this->MinifiedVariance)
+          {
+            // Below a pixel, it is drawn whole where its center is in the depth range, or not.
+            const glm::dvec2 cell = glm::floor(projection.Center);
+            if (-p.z >= nearDepth && -p.z <= farDepth && cell.x >= -reach &&
+              cell.x < width + reach && cell.y >= -reach && cell.y < height + reach)
+            {
+              const int band = (static_cast<int>(cell.y) + reach) / BandHeight;
+              minified[((k - first) / ChunkSize) * cellBands + band].push_back(
+                MakeMinifiedSplat(p, a0, a1, projection, warped, cell, backFacing ? -normal : normal,
+                  source.Colors + 3 * i, massScale, depthThreshold));
+              reason = Minified;
+            }
+            continue;
+          }
+          const splat::ResamplingKernel kernel =
+            splat::MakeResamplingKernel(projection, cutoff, filter);
+          glm::ivec4 box;
+          if (rectangles ? !RectanglePixels(eyeToClip, viewport, p, a0, a1, box)
+                         : !splat::CoveredPixels(kernel.Center, kernel.HalfExtent, width, height, box))
+          {
+            continue;
+          }
+          ScreenSplat& s = splats[k];
+          s.X0 = box.x;
+          s.X1 = box.y;
+          s.Y0 = box.z;
+          s.Y1 = box.w;
+          reason = Kept;
 
-        s.CenterX = static_cast<float>(kernel.Center.x);
-        s.CenterY = static_cast<float>(kernel.Center.y);
-        s.ConicXX = static_cast<float>(0.5 * kernel.Conic[0][0]);
-        s.ConicXY = static_cast<float>(kernel.Conic[1][0]);
-        s.ConicYY = static_cast<float>(0.5 * kernel.Conic[1][1]);
-        s.Amplitude = amplitudeScale * static_cast<float>(massScale * kernel.Amplitude);
+          s.CenterX = static_cast<float>(kernel.Center.x);
+          s.CenterY = static_cast<float>(kernel.Center.y);
+          s.ConicXX = static_cast<float>(0.5 * kernel.Conic[0][0]);
+          s.ConicXY = static_cast<float>(kernel.Conic[1][0]);
+          s.ConicYY = static_cast<float>(0.5 * kernel.Conic[1][1]);
+          s.Amplitude = amplitudeScale * static_cast<float>(massScale * kernel.Amplitude);
 
-        splat::PlaneDepth depth;
-        if (!splat::MakePlaneDepth(rays, p, normal, depth))
-        {
-          depth.Numerator = glm::dvec3(0.0, 0.0, -p.z);
-          depth.Denominator = glm::dvec3(0.0, 0.0, 1.0);
-        }
-        for (int c = 0; c < 3; ++c)
-        {
-          s.DepthNumerator[c] = static_cast<float>(depth.Numerator[c]);
-          s.DepthDenominator[c] = static_cast<float>(depth.Denominator[c]);
-        }
-        s.Threshold =
-          static_cast<float>(depthThreshold * std::max(glm::length(a0), glm::length(a1)));
+          splat::PlaneDepth depth;
+          if (!splat::MakePlaneDepth(rays, p, normal, depth))
+          {
+            depth.Numerator = glm::dvec3(0.0, 0.0, -p.z);
+            depth.Denominator = glm::dvec3(0.0, 0.0, 1.0);
+          }
+          for (int c = 0; c < 3; ++c)
+          {
+            s.DepthNumerator[c] = static_cast<float>(depth.Numerator[c]);
+            s.DepthDenominator[c] = static_cast<float>(depth.Denominator[c]);
+          }
+          s.Threshold =
+            static_cast<float>(depthThreshold * std::max(glm::length(a0), glm::length(a1)));
 
-        // Two-sided lighting: turn every normal towards the viewer before it is filtered.
-        if (backFacing)
-        {
-          normal = -normal;
+          // Two-sided lighting: turn every normal towards the viewer before it is filtered.
+          if (backFacing)
+          {
+            normal = -normal;
+          }
+          for (int c = 0; c < 3; ++c)
+          {
+            s.Normal[c] = static_cast<float>(normal[c]);
+            s.Color[c] = source.Colors[3 * i + c];
+          }
+          s.Alpha = source.Opacities ? source.Opacities[i] : 1.0f;
+          if (differential)
+          {
+            SetUpDifferentialSplat(rays, p, a0, a1, glm::length(glm::dvec3(axis0[0], axis0[1],
+              axis0[2])), glm::length(glm::dvec3(axis1[0], axis1[1], axis1[2])),
+              source.Curvatures + 2 * i, backFacing, differentials[k]);
+          }
         }
-        for (int c = 0; c < 3; ++c)
-        {
-          s.Normal[c] = static_cast<float>(normal[c]);
-          s.Color[c] = source.Colors[3 * i + c];
-        }
-        s.Alpha = source.Opacities ? source.Opacities[i] : 1.0f;
-        if (differential)
-        {
-          SetUpDifferentialSplat(rays, p, a0, a1, glm::length(glm::dvec3(axis0[0], axis0[1],
-            axis0[2])), glm::length(glm::dvec3(axis1[0], axis1[1], axis1[2])),
-            source.Curvatures + 2 * i, backFacing, differentials[k]);
-        }
-      }
-    });
+      });
 
-  // Binning into bands, serially and in input order: this order is the accumulation order of
-  // every pixel, whatever the number of threads.
-  const int bands = (height + BandHeight - 1) / BandHeight;
-  std::vector<vtkIdType>& offsets = this->Internal->BandOffsets;
-  std::vector<vtkIdType>& bandSplats = this->Internal->BandSplats;
-  offsets.assign(bands + 1, 0);
-  vtkIdType minifiedInRange = 0;
-  for (vtkIdType i = first; i < last; ++i)
-  {
-    minifiedInRange += reasons[i] == Minified;
-    if (reasons[i] != Kept)
-    {
-      continue;
-    }
-    const ScreenSplat& s = splats[i];
-    for (int b = s.Y0 / BandHeight; b <= s.Y1 / BandHeight; ++b)
-    {
-      ++offsets[b + 1];
-    }
-  }
-  for (int b = 0; b < bands; ++b)
-  {
-    offsets[b + 1] += offsets[b];
-  }
-  bandSplats.resize(offsets[bands]);
-  {
-    std::vector<vtkIdType> fill(offsets.begin(), offsets.end() - 1);
+    // Binning into bands, serially and in input order: this order is the accumulation order of
+    // every pixel, whatever the number of threads.
+    const int bands = (height + BandHeight - 1) / BandHeight;
+    std::vector<vtkIdType>& offsets = this->Internal->BandOffsets;
+    std::vector<vtkIdType>& bandSplats = this->Internal->BandSplats;
+    offsets.assign(bands + 1, 0);
+    vtkIdType minifiedInRange = 0;
     for (vtkIdType i = first; i < last; ++i)
     {
+      minifiedInRange += reasons[i] == Minified;
       if (reasons[i] != Kept)
       {
         continue;
@@ -809,118 +800,148 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
       const ScreenSplat& s = splats[i];
       for (int b = s.Y0 / BandHeight; b <= s.Y1 / BandHeight; ++b)
       {
-        bandSplats[fill[b]++] = i;
+        ++offsets[b + 1];
       }
     }
-  }
-
-  // 2. Splatting, band by band.
-  std::vector<vtkIdType> fragments(bands, 0);
-  vtkSMPTools::For(0, bands, 1,
-    [&](vtkIdType bandBegin, vtkIdType bandEnd)
+    for (int b = 0; b < bands; ++b)
     {
-      for (vtkIdType b = bandBegin; b < bandEnd; ++b)
+      offsets[b + 1] += offsets[b];
+    }
+    bandSplats.resize(offsets[bands]);
+    {
+      std::vector<vtkIdType> fill(offsets.begin(), offsets.end() - 1);
+      for (vtkIdType i = first; i < last; ++i)
       {
-        const int rowBegin = static_cast<int>(b) * BandHeight;
-        const int rowEnd = std::min(rowBegin + BandHeight, height) - 1;
-        vtkIdType written = 0;
-        for (vtkIdType k = offsets[b]; k < offsets[b + 1]; ++k)
+        if (reasons[i] != Kept)
         {
-          const ScreenSplat& s = splats[bandSplats[k]];
-          const DifferentialSplat* d = differential ? &differentials[bandSplats[k]] : nullptr;
-          const int y0 = std::max(s.Y0, rowBegin);
-          const int y1 = std::min(s.Y1, rowEnd);
-          for (int y = y0; y <= y1; ++y)
+          continue;
+        }
+        const ScreenSplat& s = splats[i];
+        for (int b = s.Y0 / BandHeight; b <= s.Y1 / BandHeight; ++b)
+        {
+          bandSplats[fill[b]++] = i;
+        }
+      }
+    }
+
+    // 2. Splatting, band by band.
+    std::vector<vtkIdType> fragments(bands, 0);
+    vtkSMPTools::For(0, bands, 1,
+      [&](vtkIdType bandBegin, vtkIdType bandEnd)
+      {
+        for (vtkIdType b = bandBegin; b < bandEnd; ++b)
+        {
+          const int rowBegin = static_cast<int>(b) * BandHeight;
+          const int rowEnd = std::min(rowBegin + BandHeight, height) - 1;
+          vtkIdType written = 0;
+          for (vtkIdType k = offsets[b]; k < offsets[b + 1]; ++k)
           {
-            const float py = y + 0.5f;
-            const float dy = py - s.CenterY;
-            // The row's span inside the ellipse: roots of XX dx^2 + XY dy dx + YY dy^2 = cutoff;
-            // a rectangle's pixels are tested one by one.
-            const float bq = s.ConicXY * dy;
-            const float discriminant =
-              bq * bq - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - cutoffF);
-            if (!(discriminant > 0.0f) && !rectangles)
+            const ScreenSplat& s = splats[bandSplats[k]];
+            const DifferentialSplat* d = differential ? &differentials[bandSplats[k]] : nullptr;
+            const int y0 = std::max(s.Y0, rowBegin);
+            const int y1 = std::min(s.Y1, rowEnd);
+            for (int y = y0; y <= y1; ++y)
             {
-              continue;
-            }
-            const float root = std::sqrt(std::max(discriminant, 0.0f));
-            const float inverse = 0.5f / s.ConicXX;
-            const int xBegin = rectangles ? s.X0 : std::max(
-              s.X0, static_cast<int>(std::ceil(s.CenterX + (-bq - root) * inverse - 0.5f)));
-            const int xEnd = rectangles ? s.X1 : std::min(
-              s.X1, static_cast<int>(std::floor(s.CenterX + (-bq + root) * inverse - 0.5f)));
-            // Forward differences along the row (paper 000, section 4): the exponent is
-            // quadratic and the depth's numerator and denominator affine in x.
-            const float dx0 = xBegin + 0.5f - s.CenterX;
-            float beta = s.ConicXX * dx0 * dx0 + s.ConicXY * dx0 * dy + s.ConicYY * dy * dy;
-            float betaStep = s.ConicXX * (2.0f * dx0 + 1.0f) + s.ConicXY * dy;
-            const float betaStep2 = 2.0f * s.ConicXX;
-            const float px0 = xBegin + 0.5f;
-            float numerator = s.DepthNumerator[0] * px0 + s.DepthNumerator[1] * py +
-              s.DepthNumerator[2];
-            float denominator = s.DepthDenominator[0] * px0 + s.DepthDenominator[1] * py +
-              s.DepthDenominator[2];
-            std::size_t pixel = static_cast<std::size_t>(y) * width + xBegin;
-            for (int x = xBegin; x <= xEnd; ++x, ++pixel, beta += betaStep,
-                     betaStep += betaStep2, numerator += s.DepthNumerator[0],
-                     denominator += s.DepthDenominator[0])
-            {
-              if ((!(beta < cutoffF) || beta < 0.0f) && !rectangles)
+              const float py = y + 0.5f;
+              const float dy = py - s.CenterY;
+              // The row's span inside the ellipse: roots of XX dx^2 + XY dy dx + YY dy^2 = cutoff;
+              // a rectangle's pixels are tested one by one.
+              const float bq = s.ConicXY * dy;
+              const float discriminant =
+                bq * bq - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - cutoffF);
+              if (!(discriminant > 0.0f) && !rectangles)
               {
-                continue; // rounding at the span's ends
+                continue;
               }
-              const float z = numerator / denominator;
-              if (!(z >= nearClip && z <= farClip) || (sceneDepths && z > sceneDepths[pixel]))
+              const float root = std::sqrt(std::max(discriminant, 0.0f));
+              const float inverse = 0.5f / s.ConicXX;
+              const int xBegin = rectangles ? s.X0 : std::max(
+                s.X0, static_cast<int>(std::ceil(s.CenterX + (-bq - root) * inverse - 0.5f)));
+              const int xEnd = rectangles ? s.X1 : std::min(
+                s.X1, static_cast<int>(std::floor(s.CenterX + (-bq + root) * inverse - 0.5f)));
+              // Forward differences along the row (paper 000, section 4): the exponent is
+              // quadratic and the depth's numerator and denominator affine in x.
+              const float dx0 = xBegin + 0.5f - s.CenterX;
+              float beta = s.ConicXX * dx0 * dx0 + s.ConicXY * dx0 * dy + s.ConicYY * dy * dy;
+              float betaStep = s.ConicXX * (2.0f * dx0 + 1.0f) + s.ConicXY * dy;
+              const float betaStep2 = 2.0f * s.ConicXX;
+              const float px0 = xBegin + 0.5f;
+              float numerator = s.DepthNumerator[0] * px0 + s.DepthNumerator[1] * py +
+                s.DepthNumerator[2];
+              float denominator = s.DepthDenominator[0] * px0 + s.DepthDenominator[1] * py +
+                s.DepthDenominator[2];
+              std::size_t pixel = static_cast<std::size_t>(y) * width + xBegin;
+              for (int x = xBegin; x <= xEnd; ++x, ++pixel, beta += betaStep,
+                       betaStep += betaStep2, numerator += s.DepthNumerator[0],
+                       denominator += s.DepthDenominator[0])
               {
-                continue; // clipped, or hidden by opaque geometry already in the scene
-              }
-              const float* normal = s.Normal;
-              float predicted[3];
-              if (d)
-              {
-                if (!d->Shade(x + 0.5f, py, z, s.Normal, rectangles, predicted))
+                if ((!(beta < cutoffF) || beta < 0.0f) && !rectangles)
                 {
-                  continue; // outside the rectangle
+                  continue; // rounding at the span's ends
                 }
-                normal = predicted;
+                const float z = numerator / denominator;
+                if (!(z >= nearClip && z <= farClip) || (sceneDepths && z > sceneDepths[pixel]))
+                {
+                  continue; // clipped, or hidden by opaque geometry already in the scene
+                }
+                const float* normal = s.Normal;
+                float predicted[3];
+                if (d)
+                {
+                  if (!d->Shade(x + 0.5f, py, z, s.Normal, rectangles, predicted))
+                  {
+                    continue; // outside the rectangle
+                  }
+                  normal = predicted;
+                }
+                const float w = rectangles ? 1.0f : s.Amplitude * exponential(beta);
+                Fragment* pixelFragments = &this->Fragments[pixel * layers];
+                std::uint8_t& count = this->FragmentCounts[pixel];
+                if (!translucent)
+                {
+                  AddOpaque(pixelFragments, count, layers, z, w, normal, s);
+                }
+                else
+                {
+                  this->AddLayered(pixelFragments, count, x, y, z, w, normal, s);
+                }
+                ++written;
               }
-              const float w = rectangles ? 1.0f : s.Amplitude * exponential(beta);
-              Fragment* pixelFragments = &this->Fragments[pixel * layers];
-              std::uint8_t& count = this->FragmentCounts[pixel];
-              if (!translucent)
-              {
-                AddOpaque(pixelFragments, count, layers, z, w, normal, s);
-              }
-              else
-              {
-                this->AddLayered(pixelFragments, count, x, y, z, w, normal, s);
-              }
-              ++written;
             }
           }
+          fragments[b] = written;
         }
-        fragments[b] = written;
-      }
-    });
-  for (vtkIdType f : fragments)
-  {
-    this->FragmentCount += f;
-  }
-  if (minifiedInRange > 0)
-  {
-    this->SumMinifiedSplats(chunks);
-    this->FragmentCount += this->GatherMinifiedSplats(sceneDepths);
-  }
+      });
+    for (vtkIdType f : fragments)
+    {
+      this->FragmentCount += f;
+    }
+    if (minifiedInRange > 0)
+    {
+      this->SumMinifiedSplats(chunks);
+      this->FragmentCount += this->GatherMinifiedSplats(sceneDepths);
+    }
   };
 
   // Regions whose splats all face away go last: those that the splats before them hide, behind
   // fully covered nearer surfaces, are left out, and the rest are drawn in a second pass.
   const vtkIdType front = backRegions.empty() ? count : backRegions.front().Begin;
   drawRange(0, front);
+  std::vector<char> hidden(backRegions.size());
+  vtkSMPTools::For(0, static_cast<vtkIdType>(backRegions.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType r = begin; r < end; ++r)
+      {
+        const vtkSurfelHierarchy::BackRegion& region = backRegions[r];
+        hidden[r] = this->RegionHidden(region.Low, region.High, region.Reach, nearDepth);
+      }
+    });
   vtkIdType drawn = front;
-  for (const vtkSurfelHierarchy::BackRegion& region : backRegions)
+  for (std::size_t r = 0; r < backRegions.size(); ++r)
   {
-    if (!this->RegionHidden(region.Low, region.High, region.Reach, nearDepth))
+    const vtkSurfelHierarchy::BackRegion& region = backRegions[r];
+    if (!hidden[r])
     {
       if (static_cast<std::size_t>(drawn) != region.Begin)
       {

@@ -284,17 +284,19 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
           }
           else
           {
-            const auto first = std::lower_bound(childStarts->begin(), childStarts->end() - 1,
-              starts[j]) - childStarts->begin();
-            const auto last = std::lower_bound(childStarts->begin(), childStarts->end() - 1,
-              starts[j + 1]) - childStarts->begin();
+            const auto first =
+              std::lower_bound(childStarts->begin(), childStarts->end() - 1, starts[j]) -
+              childStarts->begin();
+            const auto last =
+              std::lower_bound(childStarts->begin(), childStarts->end() - 1, starts[j + 1]) -
+              childStarts->begin();
             m = Merge(static_cast<std::size_t>(first), static_cast<std::size_t>(last),
               [&](std::size_t k) -> const Moments& { return below[k]; });
           }
           // The node's splat: its moments on its tangent plane as the variance of its axes.
           const glm::dvec3 normal = glm::normalize(m.Normal);
-          const glm::dvec3 t0 = glm::normalize(glm::cross(
-            normal, std::abs(normal.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0)));
+          const glm::dvec3 t0 = glm::normalize(glm::cross(normal,
+            std::abs(normal.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0)));
           const glm::dvec3 t1 = glm::cross(normal, t0);
           const double c00 = glm::dot(t0, m.Covariance * t0);
           const double c01 = glm::dot(t0, m.Covariance * t1);
@@ -455,7 +457,8 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
     {
       const std::size_t node = offset + j;
       const glm::dvec3 normal = normalToEye *
-        glm::dvec3(this->Normals[3 * node], this->Normals[3 * node + 1], this->Normals[3 * node + 2]);
+        glm::dvec3(
+          this->Normals[3 * node], this->Normals[3 * node + 1], this->Normals[3 * node + 2]);
       const glm::dvec3 view = perspective
         ? glm::dvec3(modelToEye *
             glm::dvec4(this->Positions[3 * node], this->Positions[3 * node + 1],
@@ -515,7 +518,8 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
         const glm::dvec3 center = glm::dvec3(modelToEye * glm::dvec4(block.Center, 1.0));
         const double nearest = -center.z - scale * block.Radius;
         const double pixels = perspective
-          ? (nearest > 0.0 ? scale * pixelsPerUnit / nearest : std::numeric_limits<double>::infinity())
+          ? (nearest > 0.0 ? scale * pixelsPerUnit / nearest
+                           : std::numeric_limits<double>::infinity())
           : scale * pixelsPerUnit;
         int level = levels - 1;
         for (; level > 0; --level)

@@ -180,42 +180,42 @@ TEST(MinifiedSplats, SphereOfSubpixelSplatsMatchesTheExactKernels)
   EXPECT_EQ(exact.Minified, 0);
   for (const Path path : { Path::Minified, Path::LevelOfDetail })
   {
-  const Frame minified = Draw(sphere, camera, path);
-  EXPECT_GT(minified.Minified, 0.99 * minified.Splatted);
-  if (path == Path::Minified)
-  {
-    EXPECT_EQ(minified.Splatted, exact.Splatted);
-  }
-  else
-  {
-    // Merged nodes 0.9 pixels apart, the surfels themselves at grazing angles: under 40% of
-    // the splats; and of the back half, the regions that the front half hides left out.
-    EXPECT_GT(minified.Merged, 0.85 * 400000);
-    EXPECT_LT(minified.Splatted, 0.4 * exact.Splatted);
-    EXPECT_GT(minified.Hidden, 0.2 * minified.Splatted);
-  }
-  const double color = ColorRMSE(exact, minified);
-  const double alpha = RMSE(exact, minified, 3, [](std::size_t) { return true; });
-  const std::size_t edgeExact = PartlyCovered(exact);
-  const std::size_t edgeMinified = PartlyCovered(minified);
-  const double radius = SilhouetteRadius(0.3, 1.8);
-  const double radiusExact = CoveredRadius(exact);
-  const double radiusMinified = CoveredRadius(minified);
-  std::printf("sphere, %s: %lld splats (%lld hidden), color RMSE %.4f, alpha RMSE %.4f, "
-              "partly covered pixels %zu (exact %zu), covered radius %.2f (exact %.2f, true "
-              "%.2f)\n",
-    Name(path), static_cast<long long>(minified.Splatted),
-    static_cast<long long>(minified.Hidden), color, alpha, edgeMinified, edgeExact,
-    radiusMinified, radiusExact, radius);
-  EXPECT_LT(color, 0.015);
-  EXPECT_LT(alpha, 0.06);
-  EXPECT_GT(edgeExact, 100u);
-  EXPECT_GT(edgeMinified, 0.7 * edgeExact);
-  // Merged nodes leave the silhouette a little wider than the per-pixel sums do; drawn by
-  // merged nodes alone, without the surfels at grazing angles, it is ragged (8 times).
-  EXPECT_LT(edgeMinified, (path == Path::Minified ? 2.0 : 2.5) * edgeExact);
-  EXPECT_NEAR(radiusMinified, radiusExact, 0.5);
-  EXPECT_NEAR(radiusExact, radius, 2.0);
+    const Frame minified = Draw(sphere, camera, path);
+    EXPECT_GT(minified.Minified, 0.99 * minified.Splatted);
+    if (path == Path::Minified)
+    {
+      EXPECT_EQ(minified.Splatted, exact.Splatted);
+    }
+    else
+    {
+      // Merged nodes 0.9 pixels apart, the surfels themselves at grazing angles: under 40% of
+      // the splats; and of the back half, the regions that the front half hides left out.
+      EXPECT_GT(minified.Merged, 0.85 * 400000);
+      EXPECT_LT(minified.Splatted, 0.4 * exact.Splatted);
+      EXPECT_GT(minified.Hidden, 0.2 * minified.Splatted);
+    }
+    const double color = ColorRMSE(exact, minified);
+    const double alpha = RMSE(exact, minified, 3, [](std::size_t) { return true; });
+    const std::size_t edgeExact = PartlyCovered(exact);
+    const std::size_t edgeMinified = PartlyCovered(minified);
+    const double radius = SilhouetteRadius(0.3, 1.8);
+    const double radiusExact = CoveredRadius(exact);
+    const double radiusMinified = CoveredRadius(minified);
+    std::printf("sphere, %s: %lld splats (%lld hidden), color RMSE %.4f, alpha RMSE %.4f, "
+                "partly covered pixels %zu (exact %zu), covered radius %.2f (exact %.2f, true "
+                "%.2f)\n",
+      Name(path), static_cast<long long>(minified.Splatted),
+      static_cast<long long>(minified.Hidden), color, alpha, edgeMinified, edgeExact,
+      radiusMinified, radiusExact, radius);
+    EXPECT_LT(color, 0.015);
+    EXPECT_LT(alpha, 0.06);
+    EXPECT_GT(edgeExact, 100u);
+    EXPECT_GT(edgeMinified, 0.7 * edgeExact);
+    // Merged nodes leave the silhouette a little wider than the per-pixel sums do; drawn by
+    // merged nodes alone, without the surfels at grazing angles, it is ragged (8 times).
+    EXPECT_LT(edgeMinified, (path == Path::Minified ? 2.0 : 2.5) * edgeExact);
+    EXPECT_NEAR(radiusMinified, radiusExact, 0.5);
+    EXPECT_NEAR(radiusExact, radius, 2.0);
   }
 }
 
@@ -234,43 +234,43 @@ TEST(MinifiedSplats, SilhouetteAgainstAnotherSurfaceStaysAntialiased)
   const Frame exact = Draw(scene, camera, Path::Exact);
   for (const Path path : { Path::Minified, Path::LevelOfDetail })
   {
-  const Frame minified = Draw(scene, camera, path);
-  EXPECT_GT(minified.Minified, 0.99 * minified.Splatted);
-  EXPECT_EQ(minified.Merged > 0, path == Path::LevelOfDetail);
-  // The silhouette: pixels between 0.9 and 1.1 sphere radii from the image center.
-  const double radius = SilhouetteRadius(0.3, 1.8);
-  auto ring = [radius](std::size_t pixel)
-  {
-    const double x = pixel % Size + 0.5 - 0.5 * Size;
-    const double y = pixel / Size + 0.5 - 0.5 * Size;
-    const double r = std::sqrt(x * x + y * y);
-    return r > 0.9 * radius && r < 1.1 * radius;
-  };
-  double ringColor = 0.0;
-  for (int c = 0; c < 3; ++c)
-  {
-    ringColor += std::pow(RMSE(exact, minified, c, ring), 2);
-  }
-  ringColor = std::sqrt(ringColor / 3.0);
-  // Blended pixels: blue well below the sphere's and well above the plane's (0.1).
-  auto blended = [](const Frame& frame, std::size_t pixel)
-  {
-    const int blue = frame.Colors[4 * pixel + 2];
-    return blue > 60 && blue < 110;
-  };
-  std::size_t blendedExact = 0, blendedMinified = 0;
-  for (std::size_t pixel = 0; pixel < static_cast<std::size_t>(Size) * Size; ++pixel)
-  {
-    blendedExact += ring(pixel) && blended(exact, pixel);
-    blendedMinified += ring(pixel) && blended(minified, pixel);
-  }
-  std::printf("silhouette over a plane, %s: color RMSE %.4f in the ring, blended pixels %zu "
-              "(exact %zu), color RMSE %.4f overall\n",
-    Name(path), ringColor, blendedMinified, blendedExact, ColorRMSE(exact, minified));
-  // Pixel by pixel the antialiased edges differ by up to about one pixel's coverage.
-  EXPECT_LT(ringColor, 0.12);
-  EXPECT_GT(blendedExact, 50u);
-  EXPECT_GT(blendedMinified, 0.6 * blendedExact);
+    const Frame minified = Draw(scene, camera, path);
+    EXPECT_GT(minified.Minified, 0.99 * minified.Splatted);
+    EXPECT_EQ(minified.Merged > 0, path == Path::LevelOfDetail);
+    // The silhouette: pixels between 0.9 and 1.1 sphere radii from the image center.
+    const double radius = SilhouetteRadius(0.3, 1.8);
+    auto ring = [radius](std::size_t pixel)
+    {
+      const double x = pixel % Size + 0.5 - 0.5 * Size;
+      const double y = pixel / Size + 0.5 - 0.5 * Size;
+      const double r = std::sqrt(x * x + y * y);
+      return r > 0.9 * radius && r < 1.1 * radius;
+    };
+    double ringColor = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      ringColor += std::pow(RMSE(exact, minified, c, ring), 2);
+    }
+    ringColor = std::sqrt(ringColor / 3.0);
+    // Blended pixels: blue well below the sphere's and well above the plane's (0.1).
+    auto blended = [](const Frame& frame, std::size_t pixel)
+    {
+      const int blue = frame.Colors[4 * pixel + 2];
+      return blue > 60 && blue < 110;
+    };
+    std::size_t blendedExact = 0, blendedMinified = 0;
+    for (std::size_t pixel = 0; pixel < static_cast<std::size_t>(Size) * Size; ++pixel)
+    {
+      blendedExact += ring(pixel) && blended(exact, pixel);
+      blendedMinified += ring(pixel) && blended(minified, pixel);
+    }
+    std::printf("silhouette over a plane, %s: color RMSE %.4f in the ring, blended pixels %zu "
+                "(exact %zu), color RMSE %.4f overall\n",
+      Name(path), ringColor, blendedMinified, blendedExact, ColorRMSE(exact, minified));
+    // Pixel by pixel the antialiased edges differ by up to about one pixel's coverage.
+    EXPECT_LT(ringColor, 0.12);
+    EXPECT_GT(blendedExact, 50u);
+    EXPECT_GT(blendedMinified, 0.6 * blendedExact);
   }
 }
 

@@ -30,8 +30,10 @@ struct NodeMass
 NodeMass MassOf(const vtkSurfelHierarchy* hierarchy, std::size_t node)
 {
   const vtkSurfaceSplatRasterizer::Surfels merged = hierarchy->GetMergedSurfels();
-  const glm::dvec3 a0(merged.Axes0[3 * node], merged.Axes0[3 * node + 1], merged.Axes0[3 * node + 2]);
-  const glm::dvec3 a1(merged.Axes1[3 * node], merged.Axes1[3 * node + 1], merged.Axes1[3 * node + 2]);
+  const glm::dvec3 a0(
+    merged.Axes0[3 * node], merged.Axes0[3 * node + 1], merged.Axes0[3 * node + 2]);
+  const glm::dvec3 a1(
+    merged.Axes1[3 * node], merged.Axes1[3 * node + 1], merged.Axes1[3 * node + 2]);
   const double mass = hierarchy->GetMassScales()[node] * glm::length(glm::cross(a0, a1));
   const double* p = merged.Positions + 3 * node;
   const float* c = merged.Colors + 3 * node;
@@ -63,8 +65,8 @@ TEST(SurfelHierarchy, LevelsKeepMassCenterAndColor)
     const double area = 0.01 * 0.01;
     surfels.Mass += area;
     surfels.Position += area * glm::dvec3(plane.Positions[3 * i], plane.Positions[3 * i + 1], 0.0);
-    surfels.Color += area *
-      glm::dvec3(plane.Colors[3 * i], plane.Colors[3 * i + 1], plane.Colors[3 * i + 2]);
+    surfels.Color +=
+      area * glm::dvec3(plane.Colors[3 * i], plane.Colors[3 * i + 1], plane.Colors[3 * i + 2]);
   }
   std::size_t node = 0;
   for (int level = 1; level < hierarchy->GetNumberOfLevels(); ++level)
@@ -94,8 +96,8 @@ TEST(SurfelHierarchy, SidesOfAThinPlateNeverMerge)
   const std::size_t n = plate.Normals.size() / 3;
   for (std::size_t i = 0; i < n; ++i)
   {
-    plate.Positions.insert(plate.Positions.end(),
-      { plate.Positions[3 * i], plate.Positions[3 * i + 1], -1e-4 });
+    plate.Positions.insert(
+      plate.Positions.end(), { plate.Positions[3 * i], plate.Positions[3 * i + 1], -1e-4 });
     plate.Normals.insert(plate.Normals.end(), { 0.0f, 0.0f, -1.0f });
     for (auto member : { &SurfelGrid::Axes0, &SurfelGrid::Axes1, &SurfelGrid::Colors })
     {
