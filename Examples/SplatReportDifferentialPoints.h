@@ -5,7 +5,8 @@
 // - plain EWA surfels (vtkSurfelGenerator) on the mesh and on decimated copies of it;
 // - differential points (vtkDifferentialPointGenerator, simplification off) on the same
 //   vertices, EWA-filtered and as the paper's unfiltered rectangles: equal primitives;
-// - differential points simplified from the full mesh at several maximum principal errors.
+// - differential points simplified from the full mesh at several maximum principal errors, by the
+//   paper's greedy enclosure test and by the set cover, with both footprints.
 // Each row: primitives, bytes per primitive as the filters store them, the time to make them,
 // ms per frame, RMSE against the mesh's reference; for the differential points, the number of
 // surfels and their ms at the same error, interpolated along the surfels' rows. Writes
@@ -124,9 +125,10 @@ inline void WriteDifferentialPointPlot(
     }
   }
   const unsigned char colors[][3] = { { 0, 0, 0 }, { 31, 119, 180 }, { 255, 127, 14 },
-    { 44, 160, 44 }, { 214, 39, 40 } };
+    { 44, 160, 44 }, { 214, 39, 40 }, { 148, 103, 189 }, { 140, 86, 75 } };
   const int markers[] = { vtkPlotPoints::DIAMOND, vtkPlotPoints::CIRCLE, vtkPlotPoints::SQUARE,
-    vtkPlotPoints::PLUS, vtkPlotPoints::CROSS };
+    vtkPlotPoints::PLUS, vtkPlotPoints::CROSS, vtkPlotPoints::CIRCLE, vtkPlotPoints::SQUARE };
+  constexpr std::size_t Styles = sizeof(markers) / sizeof(markers[0]);
   std::vector<vtkSmartPointer<vtkTable>> tables; // alive until rendered
   for (int chartIndex = 0; chartIndex < 2; ++chartIndex)
   {
@@ -159,9 +161,9 @@ inline void WriteDifferentialPointPlot(
       table->AddColumn(rmse);
       auto* points = vtkPlotPoints::SafeDownCast(chart->AddPlot(vtkChart::POINTS));
       points->SetInputData(table, 0, 1);
-      const unsigned char* color = colors[s % 5];
+      const unsigned char* color = colors[s % Styles];
       points->SetColor(color[0], color[1], color[2], 255);
-      points->SetMarkerStyle(markers[s % 5]);
+      points->SetMarkerStyle(markers[s % Styles]);
       points->SetMarkerSize(10.0f);
       points->SetLabel(series[s]);
       tables.push_back(table.Get());
@@ -246,17 +248,26 @@ inline std::string MeasureDifferentialPoints(vtkRenderWindow* window, vtkRendere
     measure("differential points", source, points->GetOutput(), made, true, false);
     measure("rectangles", source, points->GetOutput(), made, true, true);
   }
-  // Simplified from the full mesh.
-  for (const double epsilon : { 0.005, 0.01, 0.02, 0.05 })
+  // Simplified from the full mesh by each simplification, drawn with each footprint.
+  for (const int mode :
+    { vtkDifferentialPointGenerator::GREEDY_ENCLOSURE, vtkDifferentialPointGenerator::SET_COVER })
   {
-    const auto start = Clock::now();
-    vtkNew<vtkDifferentialPointGenerator> points;
-    points->SetInputData(mesh);
-    points->SetMaximumPrincipalError(epsilon);
-    points->SetMaximumPrincipalWidth(delta);
-    points->Update();
-    measure("simplified differential points", "eps " + Fixed(epsilon, 3) + " (the mesh)",
-      points->GetOutput(), seconds(start), true, false);
+    const std::string name =
+      mode == vtkDifferentialPointGenerator::SET_COVER ? "set cover" : "greedy enclosure";
+    for (const double epsilon : { 0.005, 0.01, 0.02, 0.05 })
+    {
+      const auto start = Clock::now();
+      vtkNew<vtkDifferentialPointGenerator> points;
+      points->SetInputData(mesh);
+      points->SetSimplificationMode(mode);
+      points->SetMaximumPrincipalError(epsilon);
+      points->SetMaximumPrincipalWidth(delta);
+      points->Update();
+      const double made = seconds(start);
+      const std::string source = "eps " + Fixed(epsilon, 3) + " (the mesh)";
+      measure(name + ", differential points", source, points->GetOutput(), made, true, false);
+      measure(name + ", rectangles", source, points->GetOutput(), made, true, true);
+    }
   }
   WriteDifferentialPointPlot(rows, options.OutputDir + "/differential-points.png");
 
@@ -278,7 +289,8 @@ inline std::string MeasureDifferentialPoints(vtkRenderWindow* window, vtkRendere
      << "points (vtkDifferentialPointGenerator, maximum principal width " << Fixed(delta, 5)
      << ", a fiftieth of the diagonal) on the same vertices, simplification off, EWA-filtered "
      << "and as the paper's unfiltered rectangles; then simplified from the full mesh at "
-     << "several maximum principal errors. Bytes per primitive: the coordinates and point "
+     << "several maximum principal errors by the paper's greedy enclosure test and by the set "
+     << "cover (the default), with both footprints. Bytes per primitive: the coordinates and point "
      << "arrays as the filters store them. The last columns interpolate, along the surfels' "
      << "rows, how many surfels reach the same RMSE and in how many ms (blank outside their "
      << "range). The paper's claim: the same error with at most half the primitives and at "
