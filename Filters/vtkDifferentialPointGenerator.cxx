@@ -2,6 +2,7 @@
 #include "vtkDifferentialPointGenerator.h"
 
 #include "SplatDifferentialPointGeometry.h"
+#include "SplatDifferentialPointSetCover.h"
 #include "SplatDifferentialPointSimplifier.h"
 
 #include "vtkCellArray.h"
@@ -53,6 +54,7 @@ struct Samples
   Rings Ring;                                            // 1-ring or nearest points, symmetric
   std::vector<std::vector<Eigen::Vector3d>> RingNormals; // a mesh edge's averaged polygon normals
   std::vector<Eigen::Vector3d> FrameNormals;             // zero where unknown
+  vtkSmartPointer<vtkCellArray> Polygons;                // a mesh's, over the samples' ids
   bool Mesh = false;
 };
 
@@ -186,6 +188,7 @@ bool BuildMesh(vtkPolyData* mesh, const std::vector<vtkIdType>& sampleOf, Sample
   {
     samples.FrameNormals[i] = ToEigen(pointNormals, static_cast<vtkIdType>(i));
   }
+  samples.Polygons = oriented->GetPolys();
   samples.Mesh = true;
   return true;
 }
@@ -228,6 +231,89 @@ void BuildCloud(vtkPolyData* cloud, vtkStaticPointLocator* locator, Samples& sam
     ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
   }
   samples.FrameNormals.assign(n, Eigen::Vector3d::Zero());
+}
+
+// The set cover's samples of the surface, weighted by the area each stands for: a mesh's used
+// vertices and polygon centroids (a polygon's area half to its centroid, half shared by its
+// vertices), a cloud's points and the midpoints to their ring neighbors (a point's area, the mean
+// squared distance to its ring, half to itself and half shared by its ring's midpoints). A
+// centroid or midpoint takes the averaged normal of its points; none is made where they cancel.
+std::vector<splat::CoverSample> CoverSamples(
+  const Samples& samples, const std::vector<DifferentialPoint>& points)
+{
+  const std::size_t n = points.size();
+  std::vector<splat::CoverSample> result;
+  std::vector<double> weights(n, 0.0);
+  auto addAverage = [&](const Eigen::Vector3d& position, const Eigen::Vector3d& normalSum,
+                      double weight)
+  {
+    if (normalSum.norm() > 1e-6)
+    {
+      result.push_back({ position, normalSum.normalized(), weight });
+    }
+  };
+  if (samples.Mesh)
+  {
+    auto cells = vtk::TakeSmartPointer(samples.Polygons->NewIterator());
+    for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
+    {
+      vtkIdType size;
+      const vtkIdType* cell;
+      cells->GetCurrentCell(size, cell);
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), normalSum = Eigen::Vector3d::Zero();
+      double area = 0.0;
+      for (vtkIdType i = 0; i < size; ++i)
+      {
+        centroid += points[cell[i]].Position / static_cast<double>(size);
+        normalSum += points[cell[i]].Normal;
+        if (i >= 2)
+        {
+          area += 0.5 *
+            (points[cell[i - 1]].Position - points[cell[0]].Position)
+              .cross(points[cell[i]].Position - points[cell[0]].Position)
+              .norm();
+        }
+      }
+      for (vtkIdType i = 0; i < size; ++i)
+      {
+        weights[cell[i]] += 0.5 * area / static_cast<double>(size);
+      }
+      addAverage(centroid, normalSum, 0.5 * area);
+    }
+  }
+  else
+  {
+    for (std::size_t p = 0; p < n; ++p)
+    {
+      const auto& ring = samples.Ring[p];
+      double area = 0.0;
+      for (std::int64_t q : ring)
+      {
+        area += (points[q].Position - points[p].Position).squaredNorm() / ring.size();
+      }
+      weights[p] = 0.5 * area;
+    }
+    for (std::size_t p = 0; p < n; ++p)
+    {
+      for (std::int64_t q : samples.Ring[p])
+      {
+        if (static_cast<std::size_t>(q) > p && points[p].Normal.dot(points[q].Normal) > 0.0)
+        {
+          addAverage(0.5 * (points[p].Position + points[q].Position),
+            points[p].Normal + points[q].Normal,
+            weights[p] / samples.Ring[p].size() + weights[q] / samples.Ring[q].size());
+        }
+      }
+    }
+  }
+  for (std::size_t p = 0; p < n; ++p)
+  {
+    if (!samples.Ring[p].empty())
+    {
+      result.push_back({ points[p].Position, points[p].Normal, weights[p] });
+    }
+  }
+  return result;
 }
 
 // The output: the kept points' coordinates and input point data, their differential geometry
@@ -486,13 +572,22 @@ int vtkDifferentialPointGenerator::RequestData(
   }
   if (this->Simplify && n > 1)
   {
-    splat::DifferentialPointSimplifier simplifier(points, this->SimplificationMargin);
-    const std::vector<bool> simplified = simplifier.Run(samples.Ring,
-      [this](double fraction)
-      {
-        this->UpdateProgress(0.5 + 0.45 * fraction);
-        return !this->GetAbortExecute();
-      });
+    const auto progress = [this](double fraction)
+    {
+      this->UpdateProgress(0.5 + 0.45 * fraction);
+      return !this->GetAbortExecute();
+    };
+    std::vector<bool> simplified;
+    if (this->SimplificationMode == SET_COVER)
+    {
+      splat::DifferentialPointSetCover cover(points, this->SimplificationMargin, epsilon);
+      simplified = cover.Run(CoverSamples(samples, points), kept, progress);
+    }
+    else
+    {
+      splat::DifferentialPointSimplifier simplifier(points, this->SimplificationMargin);
+      simplified = simplifier.Run(samples.Ring, progress);
+    }
     for (vtkIdType p = 0; p < n; ++p)
     {
       kept[p] = kept[p] && simplified[p];
@@ -516,6 +611,12 @@ int vtkDifferentialPointGenerator::RequestData(
 }
 
 //------------------------------------------------------------------------------
+const char* vtkDifferentialPointGenerator::GetSimplificationModeAsString()
+{
+  return this->SimplificationMode == SET_COVER ? "SET_COVER" : "GREEDY_ENCLOSURE";
+}
+
+//------------------------------------------------------------------------------
 void vtkDifferentialPointGenerator::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -523,6 +624,7 @@ void vtkDifferentialPointGenerator::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumPrincipalWidth: " << this->MaximumPrincipalWidth << "\n";
   os << indent << "NumberOfNeighbors: " << this->NumberOfNeighbors << "\n";
   os << indent << "Simplify: " << (this->Simplify ? "On" : "Off") << "\n";
+  os << indent << "SimplificationMode: " << this->GetSimplificationModeAsString() << "\n";
   os << indent << "SimplificationMargin: " << this->SimplificationMargin << "\n";
   os << indent << "NumberOfKeptPoints: " << this->NumberOfKeptPoints << "\n";
   os << indent << "NumberOfSkippedPoints: " << this->NumberOfSkippedPoints << "\n";

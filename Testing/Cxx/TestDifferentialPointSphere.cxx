@@ -6,9 +6,10 @@
 //   within a bound of the reference (RMSE over the pixels both cover) and clearly closer than
 //   plain EWA surfels on the same points, on both backends and with both footprints (the EWA
 //   filtered Gaussian and the paper's unfiltered rectangle).
-// - Holes: a dense sphere simplified by vtkDifferentialPointGenerator to a few hundred points
-//   covers every pixel of the reference's silhouette (shrunk by 2 pixels) at several views.
-// - The regression image: the simplified sphere's differential points.
+// - Holes: a dense sphere simplified by vtkDifferentialPointGenerator to a few hundred points, by
+//   the paper's greedy enclosure test and by the set cover (which must keep far fewer), covers
+//   every pixel of the reference's silhouette (shrunk by 2 pixels) at several views.
+// - The regression image: the sphere simplified by the set cover, EWA-filtered.
 #include "SplatTestUtilities.h"
 #include "vtkDifferentialPointGenerator.h"
 #include "vtkSurfaceSplatMapper.h"
@@ -212,39 +213,55 @@ int main(int argc, char* argv[])
   ok = CheckShading(coarsePoints, coarseSurfels, reference, front, vtkSplatBackend::OPENGL,
          vtkSurfaceSplatMapper::UNFILTERED, "OpenGL-rectangles", RECTANGLE_SHADING_RMSE) && ok;
 
-  // Many points simplified: a 12,000-point cloud on the sphere.
+  // Many points simplified: vtkSphereSource's 12,482 vertices, by the paper's greedy enclosure
+  // test and by the set cover; the set cover keeps at most SetCoverRatio of the other's points.
   vtkNew<vtkSphereSource> dense;
   dense->SetThetaResolution(160);
   dense->SetPhiResolution(80);
-  vtkNew<vtkDifferentialPointGenerator> simplified;
-  simplified->SetInputConnection(dense->GetOutputPort());
-  simplified->Update();
+  dense->Update();
   const vtkIdType inputPoints = dense->GetOutput()->GetNumberOfPoints();
-  const vtkIdType kept = simplified->GetNumberOfKeptPoints();
-  std::printf("simplification: %lld points kept of %lld\n", static_cast<long long>(kept),
-    static_cast<long long>(inputPoints));
-  ok = kept > 0 && kept * 5 < inputPoints && ok;
-
+  constexpr double SetCoverRatio = 0.5;
+  vtkIdType kept[2] = { 0, 0 };
   vtkNew<vtkSurfaceSplatMapper> mapper;
-  mapper->SetInputConnection(simplified->GetOutputPort());
   mapper->SetPrimitiveToDifferentialPoints();
   mapper->SetBackendToCPU();
   Scene scene(mapper);
-  for (const View& view : { View{ 0.0, 0.0 }, View{ 70.0, 40.0 }, View{ 150.0, -60.0 },
-         View{ 250.0, 85.0 }, front })
+  vtkNew<vtkDifferentialPointGenerator> simplified;
+  for (const int mode :
+    { vtkDifferentialPointGenerator::GREEDY_ENCLOSURE, vtkDifferentialPointGenerator::SET_COVER })
   {
-    const vtkSmartPointer<vtkImageData> silhouette = Reference(view);
-    for (const int filter : { vtkSurfaceSplatMapper::UNFILTERED, vtkSurfaceSplatMapper::EWA })
+    simplified->SetInputConnection(dense->GetOutputPort());
+    simplified->SetSimplificationMode(mode);
+    simplified->Update();
+    kept[mode] = simplified->GetNumberOfKeptPoints();
+    std::printf("simplification, %s: %lld points kept of %lld\n",
+      simplified->GetSimplificationModeAsString(), static_cast<long long>(kept[mode]),
+      static_cast<long long>(inputPoints));
+    ok = kept[mode] > 0 && kept[mode] * 5 < inputPoints && ok;
+    mapper->SetInputConnection(simplified->GetOutputPort());
+    for (const View& view : { View{ 0.0, 0.0 }, View{ 70.0, 40.0 }, View{ 150.0, -60.0 },
+           View{ 250.0, 85.0 }, front })
     {
-      mapper->SetFilterMode(filter);
-      const long holes = Holes(silhouette, scene.Render(view), 2);
-      std::printf("holes, view (%g, %g), %s: %ld uncovered pixels inside the silhouette\n",
-        view.Azimuth, view.Elevation, filter == vtkSurfaceSplatMapper::EWA ? "EWA" : "rectangles",
-        holes);
-      ok = holes == 0 && ok;
+      const vtkSmartPointer<vtkImageData> silhouette = Reference(view);
+      for (const int filter : { vtkSurfaceSplatMapper::UNFILTERED, vtkSurfaceSplatMapper::EWA })
+      {
+        mapper->SetFilterMode(filter);
+        const long holes = Holes(silhouette, scene.Render(view), 2);
+        std::printf("holes, %s, view (%g, %g), %s: %ld uncovered pixels inside the silhouette\n",
+          simplified->GetSimplificationModeAsString(), view.Azimuth, view.Elevation,
+          filter == vtkSurfaceSplatMapper::EWA ? "EWA" : "rectangles", holes);
+        ok = holes == 0 && ok;
+      }
     }
   }
-  // The regression image: the simplified sphere, EWA-filtered, from the front view.
+  const bool fewer = kept[vtkDifferentialPointGenerator::SET_COVER] <=
+    SetCoverRatio * kept[vtkDifferentialPointGenerator::GREEDY_ENCLOSURE];
+  std::printf("set cover / greedy enclosure: %.3f (bound %.2f) %s\n",
+    static_cast<double>(kept[vtkDifferentialPointGenerator::SET_COVER]) /
+      kept[vtkDifferentialPointGenerator::GREEDY_ENCLOSURE],
+    SetCoverRatio, fewer ? "ok" : "FAILED");
+  ok = fewer && ok;
+  // The regression image: the sphere simplified by the set cover, EWA-filtered, front view.
   const bool imageOk = vtkRegressionTestImage(scene.Window) != vtkTesting::FAILED;
   return ok && imageOk ? EXIT_SUCCESS : EXIT_FAILURE;
 }

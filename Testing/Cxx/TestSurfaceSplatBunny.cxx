@@ -62,8 +62,9 @@ int main(int argc, char* argv[])
   window->Render();
 
   // bun_zipper.ply has 1113 vertices that no triangle uses: the generators leave them out, so
-  // every splat the mapper gets is valid. The differential points keep about 13,800 of 34,834.
-  if (mapper->GetNumberOfRenderedSplats() < (differential ? 10000 : 30000) ||
+  // every splat the mapper gets is valid. The differential points' set cover keeps about 4,360 of
+  // 34,834 (the paper's greedy enclosure about 15,300).
+  if (mapper->GetNumberOfRenderedSplats() < (differential ? 3000 : 30000) ||
     mapper->GetNumberOfSkippedPoints() != 0)
   {
     std::cerr << "Expected the bunny's splats drawn and none skipped, got "

@@ -7,7 +7,7 @@ Checks that the filter is in paraview.simple and in the Splat category of the Fi
 its properties have the documented defaults, and that on a sphere of radius 2 it outputs
 polydata with the named arrays, curvatures near -1/2 (the sphere's, outward normals), extents
 of the error bound sqrt(2 eps - eps^2) * 2 (within 3%), one point per vertex with Simplify off and fewer
-with it on; and that the Surface Splats representation draws the simplified points as
+with it on (fewer by Set Cover, the default SimplificationMode, than by Greedy Enclosure); and that the Surface Splats representation draws the simplified points as
 differential points (Primitive "Differential Points"): every point taken, none skipped, the
 sphere's disk covered without holes. Any failure exits non-zero.
 """
@@ -41,6 +41,8 @@ def test_differential_points(simple, servermanager):
     for name, value in defaults.items():
         got = getattr(points, name)
         check(math.isclose(got, value), "default %s is %g (got %s)" % (name, value, got))
+    check(points.SimplificationMode == "Set Cover",
+          "default SimplificationMode is Set Cover (got %s)" % points.SimplificationMode)
 
     sphere.UpdatePipeline()
     vertices = sphere.GetDataInformation().GetNumberOfPoints()
@@ -73,6 +75,13 @@ def test_differential_points(simple, servermanager):
     points.UpdatePipeline()
     kept = points.GetDataInformation().GetNumberOfPoints()
     check(0 < kept < vertices / 2, "Simplify on keeps fewer points (%d of %d)" % (kept, vertices))
+    points.SimplificationMode = "Greedy Enclosure"
+    points.UpdatePipeline()
+    greedy = points.GetDataInformation().GetNumberOfPoints()
+    check(kept < greedy < vertices / 2,
+          "the set cover keeps fewer points than the greedy enclosure (%d, %d)" % (kept, greedy))
+    points.SimplificationMode = "Set Cover"
+    points.UpdatePipeline()
     data = servermanager.Fetch(points)
     check(data is not None and data.GetPointData().GetNormals() is not None
           and data.GetPointData().GetNormals().GetName() == "Normals",
