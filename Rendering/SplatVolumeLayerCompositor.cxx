@@ -13,15 +13,6 @@ namespace
 constexpr float MaximumPeakOpacity = 0.99f;
 }
 
-// Where GCC can dispatch on the running CPU (ifunc, x86-64 glibc), the pixel loop is also built
-// for AVX2 and FMA: twice the lanes of the SSE2 baseline, and the exponential's polynomial in
-// fused steps.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define SPLAT_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define SPLAT_VECTOR_CLONES
-#endif
-
 namespace splat
 {
 //------------------------------------------------------------------------------
@@ -152,13 +143,21 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::AddFactored(
     const float factor = splat::NegativeExponential(xx * dx * dx + xy * dyc * m);
     columnFactors[i] = i < columns ? factor : 0.0f;
   }
+  // The rows' factors in one vectorized pass too.
+  alignas(32) float rowFactors[MaximumFactoredColumns];
+  const int rows = std::max(y1 - y0 + 1, 0);
+  const int n0 = y0 - yc;
+  for (int j = 0; j < ((rows + Lanes - 1) / Lanes) * Lanes; ++j)
+  {
+    const float n = static_cast<float>(n0 + j);
+    const float dy = dyc + n;
+    rowFactors[j] = s.Amplitude * splat::NegativeExponential(yy * dy * dy + xy * dxc * (n + dyc));
+  }
   const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
   for (int y = y0; y <= y1; ++y)
   {
     const int n = y - yc;
-    const float dy = dyc + n;
-    const float rowFactor = s.Amplitude *
-      splat::NegativeExponential(yy * dy * dy + xy * dxc * static_cast<float>(n) + xy * dxc * dyc);
+    const float rowFactor = rowFactors[y - y0];
     glm::ivec2& span = this->Spans[y - this->RowBegin];
     span = glm::ivec2(std::min(span.x, s.X0), std::max(span.y, s.X1));
     const std::size_t row = static_cast<std::size_t>(y - this->RowBegin) * this->Stride + s.X0;

@@ -24,6 +24,15 @@
 #include <cstdint>
 #include <vector>
 
+// Where GCC can dispatch on the running CPU (ifunc, x86-64 glibc), the per-pixel loops are also built
+// for AVX2 and FMA: twice the lanes of the SSE2 baseline, and the exponential's polynomial in
+// fused steps.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define SPLAT_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define SPLAT_VECTOR_CLONES
+#endif
+
 namespace splat
 {
 /// Why the setup left a kernel out of a frame.
@@ -88,7 +97,7 @@ public:
   /// the traversal's sign (all pixels when weights is null), and starts a new layer.
   void Flush(const float* weights, bool ascending, glm::vec4* buffer);
 
-  /// The most columns AddFactored takes.
+  /// The most columns and rows AddFactored takes.
   static constexpr int MaximumFactoredColumns = 64;
 
 private:

@@ -42,12 +42,14 @@ int CrossStride(int reach)
   return 2 * reach + 1 + 8;
 }
 
-// Where one sheet lands on the intermediate image: voxel (u, v) at Scale (u, v) + Offset, and
-// its footprint there.
-struct Sheet
+// Each sheet is cut into Tiles x Tiles tiles, each with the footprint of the rays through its
+// center: in a perspective view the rays' direction, and so the footprints' shape, changes
+// across a sheet.
+constexpr int Tiles = 4;
+
+// A footprint on the intermediate image, shared by the voxels of one tile of a sheet.
+struct Footprint
 {
-  float Scale;
-  glm::vec2 Offset;
   float ConicXX, ConicXY, ConicYY; // as in ScreenKernel
   float Amplitude;                 // optical depth per unit of strength and path length
   glm::vec2 HalfExtent;
@@ -55,6 +57,15 @@ struct Sheet
   // or Reach 0 where its factors would leave the float range (Add instead).
   std::size_t Cross;
   int Reach;
+};
+
+// Where one sheet lands on the intermediate image: voxel (u, v) at Scale (u, v) + Offset; the
+// largest half extent of its footprints.
+struct Sheet
+{
+  float Scale;
+  glm::vec2 Offset;
+  glm::vec2 HalfExtent;
 };
 }
 
@@ -90,6 +101,8 @@ struct vtkVolumeSplatSheetCompositor::Internals
     glm::dvec2 Origin{ 0.0 }; // intermediate pixel (X, Y) has its center at Origin + (X, Y) + 0.5
     glm::ivec2 Size{ 0 };
     std::vector<Sheet> Sheets;
+    std::vector<Footprint> Footprints; // per sheet, Tiles x Tiles, row by row
+    glm::vec2 TileScale{ 0.0f };       // tiles per lattice unit along u and v
     std::vector<float> Cross;
   };
   std::array<List, 3> Lists;
@@ -102,8 +115,9 @@ struct vtkVolumeSplatSheetCompositor::Internals
   // Per screen pixel taking list `list` in its traversal's direction, where its ray meets the
   // intermediate image, in pixels; Unused elsewhere.
   void FindSamples(int list, const float* weights);
-  // Composites the sheets of list `list` into Image.
+  // Composites the sheets of list `list` into Image, by bands of its rows.
   void Composite(int list);
+  void CompositeBand(int list, int band);
 };
 
 //------------------------------------------------------------------------------
@@ -142,21 +156,28 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
   const glm::dmat3 indexToEye(this->IndexToEye);
   const glm::dvec2 viewport(this->View.Viewport);
   const double compensation = splat::TruncationCompensation(this->Cutoff);
+  const double boxMass = std::erf(std::sqrt(this->Cutoff));
+  const double boxCompensation = 1.0 / (boxMass * boxMass);
   const double volume = std::abs(glm::determinant(this->Input.GridAxes));
   const glm::dvec2 extent(dimensions[axes.x] - 1, dimensions[axes.y] - 1);
   glm::dvec2 lo(std::numeric_limits<double>::infinity());
   glm::dvec2 hi(-std::numeric_limits<double>::infinity());
-  // Per sheet, the voxel's Gaussian integrated along the rays (their direction per unit of
-  // index along the list's axis at the sheet's center, t) as a density on the sheet's lattice,
-  // plus the screen's low-pass filter, a unit pixel, mapped onto the sheet at its center.
-  const glm::dvec2 center = 0.5 * extent;
+  // Per sheet and tile, the voxel's Gaussian integrated along the rays (their direction per
+  // unit of index along the list's axis at the tile's center, t) as a density on the sheet's
+  // lattice, plus the screen's low-pass filter, a unit pixel, mapped onto the sheet there.
   const int u = axes.x, v = axes.y, a = list;
-  std::vector<glm::dmat2> lattices(sheets);
-  for (int k = 0; k < sheets; ++k)
+  const glm::dvec2 tileSize = (extent + 1.0) / static_cast<double>(Tiles);
+  l.TileScale = glm::vec2(1.0 / tileSize);
+  std::vector<glm::dmat2> lattices(static_cast<std::size_t>(sheets) * Tiles * Tiles);
+  for (std::size_t f = 0; f < lattices.size(); ++f)
   {
+    const int k = static_cast<int>(f / (Tiles * Tiles));
+    const int tile = static_cast<int>(f % (Tiles * Tiles));
+    const glm::dvec2 center =
+      (glm::dvec2(tile % Tiles, tile / Tiles) + 0.5) * tileSize - 0.5;
     const glm::dvec2 t =
       this->Perspective ? (center - eyeUV) / (k - this->Eye[list]) : shear;
-    glm::dmat2& lattice = lattices[k];
+    glm::dmat2& lattice = lattices[f];
     lattice[0][0] = S[u][u] - 2.0 * t.x * S[u][a] + t.x * t.x * S[a][a];
     lattice[0][1] = lattice[1][0] =
       S[u][v] - t.x * S[v][a] - t.y * S[u][a] + t.x * t.y * S[a][a];
@@ -183,15 +204,21 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
     lattice += pixelsToSheet * glm::transpose(pixelsToSheet);
   }
   // The intermediate image's pixels per lattice unit of the front sheet: SamplesPerSigma along
-  // the narrowest footprint there, so that the bilinear warp follows the footprints' shape.
-  const glm::dmat2& front = lattices[l.Reference];
-  const double narrowest = front[0][0] + front[1][1] - splat::LargestEigenvalue(front);
+  // the narrowest footprint there, so that the warp follows the footprints' shape.
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (int tile = 0; tile < Tiles * Tiles; ++tile)
+  {
+    const glm::dmat2& front = lattices[l.Reference * Tiles * Tiles + tile];
+    narrowest =
+      std::min(narrowest, front[0][0] + front[1][1] - splat::LargestEigenvalue(front));
+  }
   l.Resolution = SamplesPerSigma / std::sqrt(narrowest);
   if (!std::isfinite(l.Resolution))
   {
     return false;
   }
   l.Sheets.resize(sheets);
+  l.Footprints.resize(lattices.size());
   l.Cross.clear();
   for (int k = 0; k < sheets; ++k)
   {
@@ -201,32 +228,44 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
     const double scale = this->Perspective ? eyeOffset / (k - this->Eye[list]) : 1.0;
     const glm::dvec2 offset = this->Perspective ? (1.0 - scale) * eyeUV
                                                 : -static_cast<double>(k - l.Reference) * shear;
-    const glm::dmat2& lattice = lattices[k];
-    const glm::dmat2 intermediate = (l.Resolution * l.Resolution * scale * scale) * lattice;
-    const glm::dmat2 conic = glm::inverse(intermediate);
     s.Scale = static_cast<float>(l.Resolution * scale);
     s.Offset = glm::vec2(l.Resolution * offset);
-    s.ConicXX = static_cast<float>(0.5 * conic[0][0]);
-    s.ConicXY = static_cast<float>(conic[1][0]);
-    s.ConicYY = static_cast<float>(0.5 * conic[1][1]);
-    s.Amplitude = static_cast<float>(compensation /
-      (2.0 * 3.14159265358979323846 * std::sqrt(glm::determinant(lattice)) * volume));
-    s.HalfExtent = glm::vec2(std::sqrt(2.0 * this->Cutoff * intermediate[0][0]),
-      std::sqrt(2.0 * this->Cutoff * intermediate[1][1]));
-    // exp(-ConicXY m n) over the box's offsets from the pixel holding a voxel's center.
-    const int reach = static_cast<int>(std::ceil(std::max(s.HalfExtent.x, s.HalfExtent.y))) + 1;
-    const bool factored = std::abs(s.ConicXY) * reach * reach < 60.0f &&
-      2 * reach + 1 + 8 <= splat::VolumeLayerCompositor::MaximumFactoredColumns;
-    s.Reach = factored ? reach : 0;
-    s.Cross = l.Cross.size();
-    const int stride = CrossStride(s.Reach);
-    l.Cross.resize(l.Cross.size() + static_cast<std::size_t>(2 * s.Reach + 1) * stride, 0.0f);
-    for (int n = -s.Reach; n <= s.Reach && factored; ++n)
+    s.HalfExtent = glm::vec2(0.0f);
+    for (int tile = 0; tile < Tiles * Tiles; ++tile)
     {
-      for (int m = -s.Reach; m <= s.Reach; ++m)
+      const std::size_t index = static_cast<std::size_t>(k) * Tiles * Tiles + tile;
+      const glm::dmat2& lattice = lattices[index];
+      Footprint& footprint = l.Footprints[index];
+      const glm::dmat2 intermediate = (l.Resolution * l.Resolution * scale * scale) * lattice;
+      const glm::dmat2 conic = glm::inverse(intermediate);
+      footprint.ConicXX = static_cast<float>(0.5 * conic[0][0]);
+      footprint.ConicXY = static_cast<float>(conic[1][0]);
+      footprint.ConicYY = static_cast<float>(0.5 * conic[1][1]);
+      footprint.HalfExtent = glm::vec2(std::sqrt(2.0 * this->Cutoff * intermediate[0][0]),
+        std::sqrt(2.0 * this->Cutoff * intermediate[1][1]));
+      s.HalfExtent = glm::max(s.HalfExtent, footprint.HalfExtent);
+      // exp(-ConicXY m n) over the box's offsets from the pixel holding a voxel's center.
+      const int reach = static_cast<int>(
+                          std::ceil(std::max(footprint.HalfExtent.x, footprint.HalfExtent.y))) +
+        1;
+      const bool factored = std::abs(footprint.ConicXY) * reach * reach < 60.0f &&
+        2 * reach + 1 + 8 <= splat::VolumeLayerCompositor::MaximumFactoredColumns;
+      footprint.Reach = factored ? reach : 0;
+      // AddFactored takes the Gaussian over its box, which holds erf(sqrt(cutoff))^2 of its
+      // mass (exactly so for uncorrelated axes); Add cuts it at the cutoff ellipse.
+      footprint.Amplitude = static_cast<float>((factored ? boxCompensation : compensation) /
+        (2.0 * 3.14159265358979323846 * std::sqrt(glm::determinant(lattice)) * volume));
+      footprint.Cross = l.Cross.size();
+      const int stride = CrossStride(footprint.Reach);
+      l.Cross.resize(
+        l.Cross.size() + static_cast<std::size_t>(2 * footprint.Reach + 1) * stride, 0.0f);
+      for (int n = -footprint.Reach; n <= footprint.Reach && factored; ++n)
       {
-        l.Cross[s.Cross + (n + s.Reach) * stride + m + s.Reach] =
-          std::exp(-s.ConicXY * static_cast<float>(m * n));
+        for (int m = -footprint.Reach; m <= footprint.Reach; ++m)
+        {
+          l.Cross[footprint.Cross + (n + footprint.Reach) * stride + m + footprint.Reach] =
+            std::exp(-footprint.ConicXY * static_cast<float>(m * n));
+        }
       }
     }
     for (const glm::dvec2 corner : { glm::dvec2(0.0), extent })
@@ -313,8 +352,7 @@ void vtkVolumeSplatSheetCompositor::Internals::FindSamples(int list, const float
 }
 
 //------------------------------------------------------------------------------
-void vtkVolumeSplatSheetCompositor::Internals::Composite(
-  int list)
+SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand(int list, int band)
 {
   const List& l = this->Lists[list];
   const glm::ivec2 axes = SheetAxes(list);
@@ -331,71 +369,80 @@ void vtkVolumeSplatSheetCompositor::Internals::Composite(
   const std::vector<glm::vec4>& values = this->Values[list];
   const std::vector<vtkIdType>& starts = this->RowStarts[list];
   const float cutoff = static_cast<float>(this->Cutoff);
-  const int bands = (l.Size.y + BandHeight - 1) / BandHeight;
+  const int rowBegin = band * BandHeight;
+  const int rowEnd = std::min(rowBegin + BandHeight, l.Size.y) - 1;
+  splat::VolumeLayerCompositor compositor(l.Size.x, rowBegin, rowEnd, cutoff, false, nullptr);
+  compositor.Begin(nullptr, true, this->Image.data());
+  for (int n = 0; n < sheets; ++n)
+  {
+    const int k = l.Ascending ? n : sheets - 1 - n;
+    const Sheet& s = l.Sheets[k];
+    const glm::vec2 offset = s.Offset - glm::vec2(l.Origin);
+    // The sheet's rows whose footprints reach the band.
+    const vtkIdType first = std::max<vtkIdType>(0,
+      static_cast<vtkIdType>(std::ceil((rowBegin + 0.5f - s.HalfExtent.y - offset.y) / s.Scale)));
+    const vtkIdType last = std::min<vtkIdType>(rows - 1,
+      static_cast<vtkIdType>(std::floor((rowEnd + 0.5f + s.HalfExtent.y - offset.y) / s.Scale)));
+    if (first > last)
+    {
+      continue;
+    }
+    const float toSheet = this->Perspective ? 1.0f / (k - eye.z) : 0.0f;
+    const Footprint* footprints = l.Footprints.data() + static_cast<std::size_t>(k) * Tiles * Tiles;
+    vtkVolumeSplatRasterizer::ScreenKernel kernel;
+    kernel.Depth = 0.0f;
+    for (vtkIdType e = starts[k * rows + first]; e < starts[k * rows + last + 1]; ++e)
+    {
+      const float u = static_cast<float>(lattice[e] & 0xffffu);
+      const float v = static_cast<float>(lattice[e] >> 16);
+      const Footprint& f = footprints[static_cast<int>(v * l.TileScale.y) * Tiles +
+        static_cast<int>(u * l.TileScale.x)];
+      kernel.ConicXX = f.ConicXX;
+      kernel.ConicXY = f.ConicXY;
+      kernel.ConicYY = f.ConicYY;
+      kernel.CenterX = s.Scale * u + offset.x;
+      kernel.CenterY = s.Scale * v + offset.y;
+      kernel.X0 =
+        std::max(0, static_cast<int>(std::ceil(kernel.CenterX - f.HalfExtent.x - 0.5f)));
+      kernel.X1 = std::min(
+        l.Size.x - 1, static_cast<int>(std::floor(kernel.CenterX + f.HalfExtent.x - 0.5f)));
+      kernel.Y0 = static_cast<int>(std::ceil(kernel.CenterY - f.HalfExtent.y - 0.5f));
+      kernel.Y1 = static_cast<int>(std::floor(kernel.CenterY + f.HalfExtent.y - 0.5f));
+      // The path length along the voxel's ray per unit of index along the list's axis.
+      const glm::vec2 t = this->Perspective
+        ? (glm::vec2(u, v) - glm::vec2(eye)) * toSheet
+        : shear;
+      const float length = glm::length(axisA + t.x * axisU + t.y * axisV);
+      const glm::vec4& value = values[e];
+      kernel.Amplitude = f.Amplitude * length * value.w;
+      std::copy_n(&value.x, 3, kernel.Color);
+      if (kernel.X0 > kernel.X1)
+      {
+        continue;
+      }
+      if (f.Reach > 0)
+      {
+        compositor.AddFactored(kernel, l.Cross.data() + f.Cross, f.Reach, CrossStride(f.Reach));
+      }
+      else
+      {
+        compositor.Add(kernel);
+      }
+    }
+    compositor.Flush(nullptr, true, this->Image.data());
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatSheetCompositor::Internals::Composite(int list)
+{
+  const int bands = (this->Lists[list].Size.y + BandHeight - 1) / BandHeight;
   vtkSMPTools::For(0, bands, 1,
-    [&](vtkIdType bandBegin, vtkIdType bandEnd)
+    [this, list](vtkIdType bandBegin, vtkIdType bandEnd)
     {
       for (vtkIdType b = bandBegin; b < bandEnd; ++b)
       {
-        const int rowBegin = static_cast<int>(b) * BandHeight;
-        const int rowEnd = std::min(rowBegin + BandHeight, l.Size.y) - 1;
-        splat::VolumeLayerCompositor compositor(l.Size.x, rowBegin, rowEnd, cutoff, false, nullptr);
-        compositor.Begin(nullptr, true, this->Image.data());
-        for (int n = 0; n < sheets; ++n)
-        {
-          const int k = l.Ascending ? n : sheets - 1 - n;
-          const Sheet& s = l.Sheets[k];
-          const glm::vec2 offset = s.Offset - glm::vec2(l.Origin);
-          // The sheet's rows whose footprints reach the band.
-          const vtkIdType first = std::max<vtkIdType>(0,
-            static_cast<vtkIdType>(std::ceil((rowBegin + 0.5f - s.HalfExtent.y - offset.y) / s.Scale)));
-          const vtkIdType last = std::min<vtkIdType>(rows - 1,
-            static_cast<vtkIdType>(std::floor((rowEnd + 0.5f + s.HalfExtent.y - offset.y) / s.Scale)));
-          if (first > last)
-          {
-            continue;
-          }
-          const float toSheet = this->Perspective ? 1.0f / (k - eye.z) : 0.0f;
-          const float* cross = l.Cross.data() + s.Cross;
-          const int stride = CrossStride(s.Reach);
-          vtkVolumeSplatRasterizer::ScreenKernel kernel;
-          kernel.ConicXX = s.ConicXX;
-          kernel.ConicXY = s.ConicXY;
-          kernel.ConicYY = s.ConicYY;
-          kernel.Depth = 0.0f;
-          for (vtkIdType e = starts[k * rows + first]; e < starts[k * rows + last + 1]; ++e)
-          {
-            const float u = static_cast<float>(lattice[e] & 0xffffu);
-            const float v = static_cast<float>(lattice[e] >> 16);
-            kernel.CenterX = s.Scale * u + offset.x;
-            kernel.CenterY = s.Scale * v + offset.y;
-            kernel.X0 = std::max(0, static_cast<int>(std::ceil(kernel.CenterX - s.HalfExtent.x - 0.5f)));
-            kernel.X1 = std::min(l.Size.x - 1, static_cast<int>(std::floor(kernel.CenterX + s.HalfExtent.x - 0.5f)));
-            kernel.Y0 = static_cast<int>(std::ceil(kernel.CenterY - s.HalfExtent.y - 0.5f));
-            kernel.Y1 = static_cast<int>(std::floor(kernel.CenterY + s.HalfExtent.y - 0.5f));
-            // The path length along the voxel's ray per unit of index along the list's axis.
-            const glm::vec2 t = this->Perspective
-              ? (glm::vec2(u, v) - glm::vec2(eye)) * toSheet
-              : shear;
-            const float length = glm::length(axisA + t.x * axisU + t.y * axisV);
-            const glm::vec4& value = values[e];
-            kernel.Amplitude = s.Amplitude * length * value.w;
-            std::copy_n(&value.x, 3, kernel.Color);
-            if (kernel.X0 > kernel.X1)
-            {
-              continue;
-            }
-            if (s.Reach > 0)
-            {
-              compositor.AddFactored(kernel, cross, s.Reach, stride);
-            }
-            else
-            {
-              compositor.Add(kernel);
-            }
-          }
-          compositor.Flush(nullptr, true, this->Image.data());
-        }
+        this->CompositeBand(list, static_cast<int>(b));
       }
     });
 }
