@@ -56,19 +56,6 @@ void VolumeLayerCompositor::Begin(const float* weights, bool ascending, const gl
 }
 
 //------------------------------------------------------------------------------
-bool VolumeLayerCompositor::Reaches(const ScreenKernel& s) const
-{
-  for (int tile = s.X0 / Lanes; tile <= s.X1 / Lanes; ++tile)
-  {
-    if (this->OpenPixels[tile] > 0)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
-//------------------------------------------------------------------------------
 SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
 {
   if (!this->Reaches(s))
@@ -92,9 +79,7 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
     const float dy = y + 0.5f - s.CenterY;
     const float bq = s.ConicXY * dy;
     const float yTerm = s.ConicYY * dy * dy;
-    glm::ivec2& span = this->Spans[y - this->RowBegin];
-    span = glm::ivec2(std::min(span.x, s.X0), std::max(span.y, s.X1));
-    const std::size_t row = static_cast<std::size_t>(y - this->RowBegin) * this->Stride + s.X0;
+    const std::size_t row = this->Row(y, s);
     float* __restrict depth = this->Sums[3].data() + row;
     float* __restrict r = this->Sums[0].data() + row;
     float* __restrict g = this->Sums[1].data() + row;
@@ -158,9 +143,7 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::AddFactored(
   {
     const int n = y - yc;
     const float rowFactor = rowFactors[y - y0];
-    glm::ivec2& span = this->Spans[y - this->RowBegin];
-    span = glm::ivec2(std::min(span.x, s.X0), std::max(span.y, s.X1));
-    const std::size_t row = static_cast<std::size_t>(y - this->RowBegin) * this->Stride + s.X0;
+    const std::size_t row = this->Row(y, s);
     float* __restrict depth = this->Sums[3].data() + row;
     float* __restrict r = this->Sums[0].data() + row;
     float* __restrict g = this->Sums[1].data() + row;

@@ -20,6 +20,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -31,6 +32,13 @@
 #define SPLAT_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
 #else
 #define SPLAT_VECTOR_CLONES
+#endif
+
+// For the small helpers of those loops, which GCC otherwise leaves out of line in the clones.
+#if defined(__GNUC__)
+#define SPLAT_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define SPLAT_ALWAYS_INLINE inline
 #endif
 
 namespace splat
@@ -102,7 +110,26 @@ public:
 
 private:
   /// Whether some pixel of the columns kernel s covers still integrates (see Add).
-  bool Reaches(const ScreenKernel& s) const;
+  SPLAT_ALWAYS_INLINE bool Reaches(const ScreenKernel& s) const
+  {
+    for (int tile = s.X0 / Lanes; tile <= s.X1 / Lanes; ++tile)
+    {
+      if (this->OpenPixels[tile] > 0)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// Where the sums of band row y start at kernel s's first column; the layer's span of the row
+  /// grows to the kernel's columns.
+  SPLAT_ALWAYS_INLINE std::size_t Row(int y, const ScreenKernel& s)
+  {
+    glm::ivec2& span = this->Spans[y - this->RowBegin];
+    span = glm::ivec2(std::min(span.x, s.X0), std::max(span.y, s.X1));
+    return static_cast<std::size_t>(y - this->RowBegin) * this->Stride + s.X0;
+  }
 
   static bool IsOpen(const float* weights, bool ascending, const glm::vec4* buffer, std::size_t p)
   {

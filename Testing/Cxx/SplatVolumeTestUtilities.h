@@ -299,28 +299,6 @@ inline vtkSmartPointer<vtkImageData> ReadMri()
   return reader->GetOutput();
 }
 
-/// The MRI tests' transfer functions: air transparent, tissue faint, unshaded.
-inline vtkSmartPointer<vtkVolumeProperty> MriProperty()
-{
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0.0, 0.0);
-  opacity->AddPoint(40.0, 0.0);
-  opacity->AddPoint(90.0, 0.05);
-  opacity->AddPoint(255.0, 0.2);
-  vtkNew<vtkColorTransferFunction> color;
-  color->AddRGBPoint(0.0, 0.0, 0.0, 0.0);
-  color->AddRGBPoint(60.0, 0.8, 0.4, 0.3);
-  color->AddRGBPoint(140.0, 1.0, 0.9, 0.8);
-  color->AddRGBPoint(255.0, 1.0, 1.0, 1.0);
-  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
-  property->SetScalarOpacity(opacity);
-  property->SetColor(color);
-  property->SetScalarOpacityUnitDistance(1.0);
-  property->SetInterpolationTypeToLinear();
-  property->ShadeOff();
-  return property;
-}
-
 /// The MRI tests' camera: from below and the side, framing the head.
 inline void PlaceMriCamera(vtkRenderer* renderer)
 {

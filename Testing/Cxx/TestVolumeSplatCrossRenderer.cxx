@@ -10,6 +10,7 @@
 // The RMSE bounds (MAX_BLOB_RMSE, MAX_MRI_RMSE, MAX_MRI_SHADED_RMSE) and their justification are
 // in CMakeLists.txt.
 // Each mapper's render time is printed.
+#include "SplatVolumeScenes.h" // For splatexample::MriProperty
 #include "SplatVolumeTestUtilities.h"
 #include "vtkVolumeSplatMapper.h"
 
@@ -73,7 +74,7 @@ int main(int, char*[])
   {
     return failures ? EXIT_FAILURE : splattest::SkipReturnCode;
   }
-  vtkSmartPointer<vtkVolumeProperty> property = splattest::MriProperty();
+  vtkSmartPointer<vtkVolumeProperty> property = splatexample::MriProperty();
   auto place = splattest::PlaceMriCamera;
   vtkNew<vtkVolumeSplatMapper> splat;
   const splattest::RenderedVolume ours = Render(splat, head, property, place);

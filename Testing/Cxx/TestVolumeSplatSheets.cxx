@@ -8,6 +8,7 @@
 // Each view's RMSE and largest difference must stay within MAX_BLOB_RMSE, MAX_MRI_RMSE and
 // MAX_DIFFERENCE (their measurements are in CMakeLists.txt), and the two paths must differ at all
 // (else the sheets did not run). Both paths' frame times are printed.
+#include "SplatVolumeScenes.h" // For splatexample::MriProperty
 #include "SplatVolumeTestUtilities.h"
 #include "vtkVolumeSplatMapper.h"
 
@@ -85,7 +86,7 @@ int main(int, char*[])
   {
     return failures ? EXIT_FAILURE : splattest::SkipReturnCode;
   }
-  vtkSmartPointer<vtkVolumeProperty> property = splattest::MriProperty();
+  vtkSmartPointer<vtkVolumeProperty> property = splatexample::MriProperty();
   failures += Compare("MRI", head, property, splattest::PlaceMriCamera, MAX_MRI_RMSE);
   property->ShadeOn();
   failures += Compare("MRI shaded", head, property, splattest::PlaceMriCamera, MAX_MRI_RMSE);
