@@ -88,8 +88,9 @@ transfer functions and camera of TestVolumeSplatCrossRenderer; gaussians is --ke
 anisotropic 3D Gaussians in the unit ball (fixed seed): a "Covariance" array, a "Color" array
 and the peak extinction as scalars through an opacity transfer function. vtkVolumeSplatMapper
 runs in every ordering mode (the setting: blended, clipped, single-axis, depth-sorted) on each
-backend, and on the CPU in blended mode with SheetResampling off (blended-exact); its points are its kernels (GetNumberOfKernels: voxels of zero opacity left out), and
-splats_per_s is kernels per second. The ray casters (setting "ray cast", one ray per pixel, a
+backend, and on the CPU in blended mode with SheetResampling off (blended-exact); its points
+are its kernels (GetNumberOfKernels: voxels of zero opacity left out), and splats_per_s is
+kernels per second. The ray casters (setting "ray cast", one ray per pixel, a
 sample every voxel spacing along it) draw the MRI's voxels and, for gaussians, the mixture
 resampled onto a --grid^3 RGBA grid over the ball's cube (points: the grid's voxels; the
 resampling is not timed; vtkFixedPointVolumeRayCastMapper only: VTK 9.1's

@@ -25,9 +25,9 @@
 #include <cstdint>
 #include <vector>
 
-// Where GCC can dispatch on the running CPU (ifunc, x86-64 glibc), the per-pixel loops are also built
-// for AVX2 and FMA: twice the lanes of the SSE2 baseline, and the exponential's polynomial in
-// fused steps.
+// Where GCC can dispatch on the running CPU (ifunc, x86-64 glibc), the per-pixel loops are also
+// built for AVX2 and FMA: twice the lanes of the SSE2 baseline, and the exponential's polynomial
+// in fused steps.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
 #define SPLAT_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
 #else

@@ -663,8 +663,9 @@ bool vtkVolumeSplatRasterizer::RenderSheets(const Camera& camera, const std::arr
         {
           const double* p = input.Positions + 3 * i;
           const glm::vec3 eye(camera.ModelToEye * glm::dvec4(p[0], p[1], p[2], 1.0));
-          const glm::vec3 color = this->ShadeKernel(glm::vec3(input.Colors[3 * i], input.Colors[3 * i + 1], input.Colors[3 * i + 2]), eye,
-            normalToEye, input.Normals + 3 * i, parallel);
+          const float* c = input.Colors + 3 * i;
+          const glm::vec3 color = this->ShadeKernel(
+            glm::vec3(c[0], c[1], c[2]), eye, normalToEye, input.Normals + 3 * i, parallel);
           std::copy_n(&color.x, 3, shaded.begin() + 3 * i);
         }
       });

@@ -43,6 +43,11 @@
  * integrates along that list and direction is not evaluated at all. A kernel adds nothing to
  * pixels where its center lies behind the opaque scene's depth.
  *
+ * For image data in the axis-list orderings, SheetResampling (the default) replaces steps two
+ * to four by vtkVolumeSplatSheetCompositor where it applies: each list's sheets are composited
+ * in an intermediate image aligned with them and warped to the list's buffer, which is merged as
+ * above; SheetResampling off keeps the exact per-kernel path described here.
+ *
  * Kernels are not validated here: the caller passes finite data only.
  *
  * @sa vtkVolumeSplatMapper

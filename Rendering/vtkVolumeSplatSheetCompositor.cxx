@@ -316,7 +316,8 @@ void vtkVolumeSplatSheetCompositor::Internals::FindSamples(int list, const float
   const List& l = this->Lists[list];
   const glm::ivec2 axes = SheetAxes(list);
   const int width = this->View.Viewport.x;
-  const splat::PixelRays rays = splat::MakePixelRays(this->View.EyeToClip, glm::dvec2(this->View.Viewport));
+  const splat::PixelRays rays =
+    splat::MakePixelRays(this->View.EyeToClip, glm::dvec2(this->View.Viewport));
   this->Samples.resize(static_cast<std::size_t>(width) * this->View.Viewport.y);
   vtkSMPTools::For(0, this->View.Viewport.y,
     [&](vtkIdType rowBegin, vtkIdType rowEnd)
@@ -478,8 +479,10 @@ bool vtkVolumeSplatSheetCompositor::BeginFrame(const Kernels& kernels, const Cam
   }
   const glm::ivec3 dimensions = kernels.GridDimensions;
   const double volume = glm::determinant(kernels.GridAxes);
-  if (!kernels.GridIds || kernels.Covariances || glm::any(glm::greaterThan(dimensions, glm::ivec3(1 << 16))) ||
-    !(std::abs(volume) > 0.0) || !std::isfinite(volume))
+  // Lattice coordinates are packed in 16 bits each.
+  const bool fits = glm::all(glm::lessThanEqual(dimensions, glm::ivec3(1 << 16)));
+  if (!kernels.GridIds || kernels.Covariances || !fits || !(std::abs(volume) > 0.0) ||
+    !std::isfinite(volume))
   {
     return false;
   }
@@ -584,7 +587,8 @@ vtkIdType vtkVolumeSplatSheetCompositor::Render(int list, const std::vector<vtkI
         for (vtkIdType e = begin; e < end; ++e)
         {
           const vtkIdType id = order[e];
-          values[e] = glm::vec4(colors[3 * id], colors[3 * id + 1], colors[3 * id + 2], strengths[id]);
+          values[e] =
+            glm::vec4(colors[3 * id], colors[3 * id + 1], colors[3 * id + 2], strengths[id]);
         }
       });
     in.ValueColors[list] = colors;

@@ -7,23 +7,27 @@
  * For image data a list is a stack of sheets (the voxels at one index along the list's axis),
  * and inside a sheet every kernel has the same covariance. So, as in the shear-warp
  * factorization (Lacroute and Levoy), the sheets are composited front to back in an
- * intermediate image on the plane of the front sheet, at one pixel per voxel of that sheet:
- * the central projection from the eye (or the parallel one along the view direction) maps
- * every sheet onto that plane by a scale and a shift, under which its footprints are all one 2D
- * Gaussian, the integral of the voxel's 3D Gaussian along the rays, low-pass filtered with the
- * screen pixel mapped onto the sheet at its center. Each intermediate pixel is a view ray; the
- * path length per sheet along it scales each voxel's optical depth. Once composited, the image
- * is resampled bilinearly at the screen pixels that take the list (the final projective warp),
- * and vtkVolumeSplatRasterizer merges the lists' buffers with the per-pixel weights as for its
- * exact per-kernel path.
+ * intermediate image on the plane of the front sheet: the central projection from the eye (or
+ * the parallel one along the view direction) maps every sheet onto that plane by a scale and a
+ * shift, under which a sheet's footprints are one 2D Gaussian, the integral of the voxel's 3D
+ * Gaussian along the rays, low-pass filtered with the screen pixel mapped onto the sheet. In a
+ * perspective view the rays' direction changes across a sheet, so each sheet has a footprint per
+ * tile of 4 x 4 (the rays through the tile's center). The intermediate image has 0.7 pixels per
+ * standard deviation of the narrowest footprint of the front sheet (about one per voxel when a
+ * voxel covers a few pixels, fewer when voxels are smaller than pixels). Each intermediate pixel
+ * is a view ray; the path length per sheet along each voxel's ray scales its optical depth. A
+ * footprint's exponential is factored into per-row, per-column and per-sheet tables
+ * (splat::VolumeLayerCompositor::AddFactored). Once composited, the intermediate image is
+ * resampled with Catmull-Rom weights at the screen pixels that take the list (the final
+ * projective warp), and vtkVolumeSplatRasterizer merges the lists' buffers with the per-pixel
+ * weights as for its exact per-kernel path.
  *
- * Per pixel and sheet this is one footprint evaluation per voxel and intermediate pixel, about
- * as many as the voxels' own count, instead of one per covered screen pixel; the per-kernel
- * setup and binning disappear. The approximations against the exact path: one footprint per
- * sheet (in a perspective view the ray direction, and so the footprint's shape, of the sheet's
- * center), and the bilinear warp of an image sampled once per voxel. Intermediate pixels no
- * screen pixel reads are left out, and pixels stop integrating at the rasterizer's
- * termination opacity.
+ * Per sheet this is one footprint of a few intermediate pixels per voxel instead of one per
+ * covered screen pixel, and the per-kernel setup and binning disappear. The approximations
+ * against the exact path: one footprint per tile of a sheet, and the warp of an image sampled
+ * at 0.7 samples per footprint deviation (TestVolumeSplatSheets bounds the difference).
+ * Intermediate pixels that no screen pixel reads are left out, and pixels stop integrating at
+ * the rasterizer's termination opacity.
  *
  * It applies when the eye is outside the slab of a used list's sheets (with the kernels'
  * reach), the kernels stay in front of the near plane and the opaque scene lies behind them;
