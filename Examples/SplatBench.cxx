@@ -90,8 +90,9 @@ transfer functions and camera of TestVolumeSplatCrossRenderer; gaussians is --ke
 anisotropic 3D Gaussians in the unit ball (fixed seed): a "Covariance" array, a "Color" array
 and the peak extinction as scalars through an opacity transfer function. vtkVolumeSplatMapper
 runs in every ordering mode (the setting: blended, clipped, single-axis, depth-sorted) on each
-backend; its points are its kernels (GetNumberOfKernels: voxels of zero opacity left out), and
-splats_per_s is kernels per second. The ray casters (setting "ray cast", one ray per pixel, a
+backend, and on the CPU in blended mode with SheetResampling off (blended-exact); its points
+are its kernels (GetNumberOfKernels: voxels of zero opacity left out), and splats_per_s is
+kernels per second. The ray casters (setting "ray cast", one ray per pixel, a
 sample every voxel spacing along it) draw the MRI's voxels and, for gaussians, the mixture
 resampled onto a --grid^3 RGBA grid over the ball's cube (points: the grid's voxels; the
 resampling is not timed; vtkFixedPointVolumeRayCastMapper only: VTK 9.1's
@@ -138,7 +139,9 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
                        surfaces, cpu for the volumes, whose OpenGL rows are slow under llvmpipe;
                        a list given here applies to both)
   --orderings LIST     vtkVolumeSplatMapper's ordering modes: blended, clipped, single-axis,
-                       depth-sorted (default all)
+                       depth-sorted, and blended-exact (CPU only: blended with image data's
+                       voxels splatted one by one on the screen, SheetResampling off)
+                       (default all)
   --frames N           at most N timed frames per case (default 10)
   --budget SECONDS     time a case's frames within this many seconds: after the first timed
                        frame, another is timed only while the elapsed time plus the last
@@ -218,7 +221,8 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--orderings",
       [&](const std::string& name, const std::string& value) {
         options.Orderings =
-          SplitList(name, value, { "blended", "clipped", "single-axis", "depth-sorted" });
+          SplitList(name, value,
+            { "blended", "clipped", "single-axis", "depth-sorted", "blended-exact" });
       } },
     { "--frames", CountInto(options.Frames, 1, 100000) },
     { "--budget", CountInto(options.Budget, 0, 86400) },
@@ -350,6 +354,14 @@ std::vector<MapperKind> VolumeKinds(const Options& options)
         kind.Ordering = mode;
         kinds.push_back(kind);
       }
+      // The CPU's default ordering without the sheets: every voxel splatted on the screen.
+      if (backend == vtkSplatBackend::CPU && Chosen(options.Orderings, "blended-exact"))
+      {
+        MapperKind kind{ "splat", "vtkVolumeSplatMapper", "CPU", "blended-exact" };
+        kind.SplatBackend = backend;
+        kind.ExactKernels = true;
+        kinds.push_back(kind);
+      }
     }
   }
   if (Chosen(options.Mappers, "fixedpoint"))
@@ -452,7 +464,8 @@ Scene VolumeScene(const std::string& name, vtkDataSet* kernels, vtkVolumePropert
     vtkNew<vtkVolume> volume;
     if (kind.Name == "splat")
     {
-      volume->SetMapper(splatexample::VolumeSplat(data, kind.SplatBackend, kind.Ordering));
+      volume->SetMapper(splatexample::VolumeSplat(
+        data, kind.SplatBackend, kind.Ordering, 0.0, !kind.ExactKernels));
       volume->SetProperty(splatProperty);
       return Stage{ volume.Get(), data };
     }

@@ -50,7 +50,8 @@ struct Options
   std::vector<std::string> Mappers = { "splat", "pointgaussian", "fixedpoint", "gpuraycast" };
   std::vector<std::string> Backends = { "cpu", "opengl" };
   std::vector<std::string> VolumeBackends = { "cpu" }; // --backends sets both
-  std::vector<std::string> Orderings = { "blended", "clipped", "single-axis", "depth-sorted" };
+  std::vector<std::string> Orderings = { "blended", "clipped", "single-axis", "depth-sorted",
+    "blended-exact" };
   int Frames = 10;
   double Budget = 10.0;
   std::string Output = "output/bench/bench.csv";
@@ -69,7 +70,8 @@ struct MapperKind
   int SplatBackend = vtkSplatBackend::AUTO; // the splat mappers' SetBackend
   int FilterMode = vtkSurfaceSplatMapper::EWA;
   int Ordering = vtkVolumeSplatMapper::BLENDED; // vtkVolumeSplatMapper's SetOrderingMode
-  bool ExactKernels = false; // vtkSurfaceSplatMapper's SetMinifiedVariance(0)
+  bool ExactKernels = false; // vtkSurfaceSplatMapper's SetMinifiedVariance(0), and
+                             // vtkVolumeSplatMapper's SetSheetResampling(false)
   bool LevelOfDetail = true; // vtkSurfaceSplatMapper's SetLevelOfDetail
 };
 

@@ -280,16 +280,17 @@ inline std::vector<Case> Cases(
 }
 
 // The cases of the volume scenes: vtkVolumeSplatMapper in every ordering mode on each backend
-// (the CPU's blended mode is the default), cutoffs other than the default on the CPU, and VTK's
-// ray casters on the grid, sampling their rays every voxel spacing and every quarter of it.
+// (the CPU's blended mode is the default), cutoffs other than the default and the exact
+// per-kernel path for image data (sheets=off) on the CPU, and VTK's ray casters on the grid,
+// sampling their rays every voxel spacing and every quarter of it.
 inline std::vector<Case> VolumeCases(const std::vector<std::string>& backends)
 {
   const int allThreads = AllThreads();
   std::vector<Case> cases;
-  const auto splat = [](int backend, int ordering, double cutoff)
+  const auto splat = [](int backend, int ordering, double cutoff, bool sheets = true)
   {
     return [=](const VolumeInputs& in) -> vtkSmartPointer<vtkAbstractVolumeMapper>
-    { return splatexample::VolumeSplat(in.Kernels, backend, ordering, cutoff); };
+    { return splatexample::VolumeSplat(in.Kernels, backend, ordering, cutoff, sheets); };
   };
   vtkNew<vtkVolumeSplatMapper> probe;
   const double defaultCutoff = probe->GetCutoff();
@@ -316,6 +317,10 @@ inline std::vector<Case> VolumeCases(const std::vector<std::string>& backends)
         c.MakeVolume = splat(backend, probe->GetOrderingMode(), cutoff);
         cases.push_back(c);
       }
+      // Image data's voxels splatted one by one on the screen (SheetResampling off).
+      Case exact{ "vtkVolumeSplatMapper", name, "sheets", "sheets=off", allThreads };
+      exact.MakeVolume = splat(backend, probe->GetOrderingMode(), 0.0, false);
+      cases.push_back(exact);
     }
   }
   for (bool gpu : { false, true })

@@ -100,15 +100,16 @@ inline const std::array<int, 4>& OrderingModes()
   return modes;
 }
 
-/// vtkVolumeSplatMapper on `input` with a backend, an ordering mode and a cutoff (<= 0: the
-/// default).
+/// vtkVolumeSplatMapper on `input` with a backend, an ordering mode, a cutoff (<= 0: the
+/// default) and its SheetResampling (off: the exact per-kernel path for image data).
 inline vtkSmartPointer<vtkVolumeSplatMapper> VolumeSplat(
-  vtkDataSet* input, int backend, int ordering, double cutoff = 0.0)
+  vtkDataSet* input, int backend, int ordering, double cutoff = 0.0, bool sheets = true)
 {
   auto mapper = vtkSmartPointer<vtkVolumeSplatMapper>::New();
   mapper->SetInputData(input);
   mapper->SetBackend(backend);
   mapper->SetOrderingMode(ordering);
+  mapper->SetSheetResampling(sheets);
   if (cutoff > 0.0)
   {
     mapper->SetCutoff(cutoff);

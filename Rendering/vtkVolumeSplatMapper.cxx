@@ -299,6 +299,22 @@ double vtkVolumeSplatMapper::GetBlendThreshold()
 }
 
 //------------------------------------------------------------------------------
+void vtkVolumeSplatMapper::SetSheetResampling(bool on)
+{
+  if (on != this->Rasterizer->GetSheetResampling())
+  {
+    this->Rasterizer->SetSheetResampling(on);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkVolumeSplatMapper::GetSheetResampling()
+{
+  return this->Rasterizer->GetSheetResampling();
+}
+
+//------------------------------------------------------------------------------
 void vtkVolumeSplatMapper::SetCutoff(double cutoff)
 {
   if (cutoff != this->Rasterizer->GetCutoff())
@@ -574,6 +590,8 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
     k.View.ListFrame[axis] = glm::normalize(indexToModel[axis]);
   }
   k.View.GridDimensions = glm::ivec3(dims[0], dims[1], dims[2]);
+  k.View.GridAxes = indexToModel;
+  k.View.GridOrigin = origin;
   return true;
 }
 
@@ -926,6 +944,7 @@ void vtkVolumeSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   auto name = [](const char* s) { return s ? s : "(none)"; };
   os << indent << "OrderingMode: " << this->GetOrderingMode() << "\n";
   os << indent << "BlendThreshold: " << this->GetBlendThreshold() << "\n";
+  os << indent << "SheetResampling: " << this->GetSheetResampling() << "\n";
   os << indent << "Cutoff: " << this->GetCutoff() << "\n";
   os << indent << "Backend: " << vtkSplatBackend::GetBackendAsString(this->Backend) << "\n";
   os << indent << "LastBackend: " << vtkSplatBackend::GetBackendAsString(this->LastBackend)

@@ -155,6 +155,18 @@ public:
 
   ///@{
   /**
+   * For image data on the CPU backend (BLENDED, CLIPPED and SINGLE_AXIS orderings): composite
+   * each list sheet by sheet in an intermediate image aligned with the grid's sheets, warped to
+   * the screen once per frame (vtkVolumeSplatSheetCompositor), where it applies; off splats
+   * every voxel on the screen (the exact per-kernel path). Default on.
+   */
+  void SetSheetResampling(bool on);
+  bool GetSheetResampling();
+  vtkBooleanMacro(SheetResampling, bool);
+  ///@}
+
+  ///@{
+  /**
    * Cutoff on the footprint exponent 1/2 x^T M^-1 x, as for vtkSurfaceSplatMapper. Default 4.5,
    * three standard deviations (see splat::DefaultVolumeCutoff).
    */

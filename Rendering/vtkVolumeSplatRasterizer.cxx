@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkVolumeSplatRasterizer.h"
 
-#include "SplatExponential.h"
 #include "SplatSphericalHarmonics.h"
+#include "SplatVolumeLayerCompositor.h"
 #include "SplatVolumeKernel.h"
+#include "vtkVolumeSplatSheetCompositor.h"
 
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
 
@@ -17,35 +19,13 @@ vtkStandardNewMacro(vtkVolumeSplatRasterizer);
 
 namespace
 {
-enum SkipReason : std::uint8_t
-{
-  Kept = 0,
-  NearPlane,
-  OutsideFrustum
-};
+using splat::Kept;
+using splat::NearPlane;
+using splat::OutsideFrustum;
 
 // Rows per band: small enough to balance the threads, large enough that few kernels straddle bands.
 constexpr int BandHeight = 16;
-
-// Accumulated opacity at which a pixel stops integrating: what is behind changes it by less
-// than half an 8-bit step.
-constexpr float TerminationAlpha = 1.0f - 1.0f / 512.0f;
-
-// The most a kernel of the 3D Gaussian Splatting convention covers a pixel, as in its viewers.
-constexpr float MaximumPeakOpacity = 0.99f;
 }
-
-// One kernel after setup, in the single precision the per-pixel loop uses.
-struct vtkVolumeSplatRasterizer::ScreenKernel
-{
-  float CenterX, CenterY;
-  float ConicXX, ConicXY, ConicYY; // 1/2 M^-1, so that beta = d^T C d
-  float Amplitude; // optical depth (density model) or opacity (peak model) at the center
-  float Depth;     // eye-space depth of the center
-  float Color[3];
-  int X0, X1, Y0, Y1; // inclusive pixel bounds
-  SkipReason Skip;
-};
 
 // Which lists each pixel uses, with which weight and in which direction.
 struct vtkVolumeSplatRasterizer::PixelLists
@@ -66,7 +46,8 @@ struct vtkVolumeSplatRasterizer::PixelLists
   std::array<std::vector<Band>, 4> Bands;
 };
 
-// A kernel in a band's bin of a list, with its compositing layer (see LayerCompositor).
+// A kernel in a band's bin of a list, with its compositing layer (see
+// splat::VolumeLayerCompositor).
 struct BinnedKernel
 {
   vtkVolumeSplatRasterizer::ScreenKernel Kernel;
@@ -83,6 +64,9 @@ struct vtkVolumeSplatRasterizer::Internals
   std::array<std::vector<vtkIdType>, 4> Offsets;
   std::array<std::vector<BinnedKernel>, 4> Bins;
   std::array<std::vector<glm::vec4>, 4> Buffers;
+  // Image data's sheets, and the frame's colors of shaded kernels for them.
+  vtkNew<vtkVolumeSplatSheetCompositor> Sheets;
+  std::vector<float> ShadedColors;
   // The kernels' spherical-harmonic colors for ViewKey, the view point (w = 1) or the view
   // axis (w = 0) in model coordinates, up to ViewDegree (0: not evaluated).
   std::vector<float> ViewColors;
@@ -94,181 +78,6 @@ namespace
 {
 using ScreenKernel = vtkVolumeSplatRasterizer::ScreenKernel;
 using PixelLists = vtkVolumeSplatRasterizer::PixelLists;
-
-// Where GCC can dispatch on the running CPU (ifunc, x86-64 glibc), the pixel loop is also built
-// for AVX2 and FMA: twice the lanes of the SSE2 baseline, and the exponential's polynomial in
-// fused steps.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define SPLAT_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define SPLAT_VECTOR_CLONES
-#endif
-
-// Composites the kernels of one list into one band of its buffer, front to back, layer by layer.
-// A layer is a sheet of the grid for image data (kernels side by side at one index along the
-// list's axis, whose order within the sheet is arbitrary) and a single kernel otherwise. A
-// layer's footprints are first summed per pixel as optical depth and optical-depth-weighted
-// color; the layer then goes under the pixel once, with opacity 1 - exp(-sum). That is the
-// transmittance of compositing its kernels one by one, with colors weighted by each kernel's
-// share of the optical depth, independent of their order, and one exponential per pixel and
-// layer instead of one per kernel and pixel.
-class LayerCompositor
-{
-public:
-  LayerCompositor(int width, int rowBegin, int rowEnd, float cutoff, bool peakOpacity,
-    const float* sceneDepths)
-    : Width(width)
-    , RowBegin(rowBegin)
-    , RowEnd(rowEnd)
-    , Cutoff(cutoff)
-    , PeakOpacity(peakOpacity)
-    , Stride(width + Lanes)
-    , Spans(rowEnd - rowBegin + 1, glm::ivec2(std::numeric_limits<int>::max(), -1))
-    , OpenPixels((width + Lanes - 1) / Lanes, 0)
-  {
-    const std::size_t size = static_cast<std::size_t>(rowEnd - rowBegin + 1) * this->Stride;
-    for (auto& sum : this->Sums)
-    {
-      sum.assign(size, 0.0f);
-    }
-    this->SceneDepths.assign(size, std::numeric_limits<float>::infinity());
-    for (int y = rowBegin; sceneDepths && y <= rowEnd; ++y)
-    {
-      std::copy_n(sceneDepths + static_cast<std::size_t>(y) * width, width,
-        this->SceneDepths.begin() + static_cast<std::size_t>(y - rowBegin) * this->Stride);
-    }
-  }
-
-  /// Starts a traversal of a list into `buffer`: a band pixel is open while it integrates, that
-  /// is below the termination opacity and, when weights is not null, with the traversal's sign.
-  void Begin(const float* weights, bool ascending, const glm::vec4* buffer)
-  {
-    std::fill(this->OpenPixels.begin(), this->OpenPixels.end(), 0);
-    for (int y = this->RowBegin; y <= this->RowEnd; ++y)
-    {
-      const std::size_t pixelRow = static_cast<std::size_t>(y) * this->Width;
-      for (int x = 0; x < this->Width; ++x)
-      {
-        const std::size_t p = pixelRow + x;
-        this->OpenPixels[x / Lanes] += IsOpen(weights, ascending, buffer, p);
-      }
-    }
-  }
-
-  /// Adds kernel s to the current layer, unless every pixel of the columns it covers has stopped
-  /// integrating or does not take this traversal (early termination per tile of the band's rows
-  /// by Lanes columns): Flush would leave its sums unused.
-  SPLAT_VECTOR_CLONES void Add(const ScreenKernel& s)
-  {
-    bool open = false;
-    for (int tile = s.X0 / Lanes; tile <= s.X1 / Lanes && !open; ++tile)
-    {
-      open = this->OpenPixels[tile] > 0;
-    }
-    if (!open)
-    {
-      return;
-    }
-    const int y0 = std::max(s.Y0, this->RowBegin);
-    const int y1 = std::min(s.Y1, this->RowEnd);
-    const float xx = s.ConicXX;
-    const float amplitude = s.Amplitude;
-    const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
-    const float kernelDepth = s.Depth;
-    const float cutoff = this->Cutoff;
-    const int columns = s.X1 - s.X0 + 1;
-    // Whole groups of lanes over the box's columns, the cutoff ellipse as a mask: no per-row
-    // span and no scalar remainder.
-    const int count = ((columns + Lanes - 1) / Lanes) * Lanes;
-    const float dx0 = s.X0 + 0.5f - s.CenterX;
-    for (int y = y0; y <= y1; ++y)
-    {
-      const float dy = y + 0.5f - s.CenterY;
-      const float bq = s.ConicXY * dy;
-      const float yTerm = s.ConicYY * dy * dy;
-      glm::ivec2& span = this->Spans[y - this->RowBegin];
-      span = glm::ivec2(std::min(span.x, s.X0), std::max(span.y, s.X1));
-      const std::size_t row = static_cast<std::size_t>(y - this->RowBegin) * this->Stride + s.X0;
-      float* __restrict depth = this->Sums[3].data() + row;
-      float* __restrict r = this->Sums[0].data() + row;
-      float* __restrict g = this->Sums[1].data() + row;
-      float* __restrict b = this->Sums[2].data() + row;
-      const float* __restrict sceneDepths = this->SceneDepths.data() + row;
-      for (int i = 0; i < count; ++i)
-      {
-        const float dx = dx0 + static_cast<float>(i);
-        const float beta = (xx * dx + bq) * dx + yTerm;
-        const float e = amplitude * splat::NegativeExponential(beta);
-        // Behind the opaque scene the kernel adds nothing.
-        const bool inside = (beta < cutoff) & (i < columns) & (kernelDepth <= sceneDepths[i]);
-        const float t = inside ? e : 0.0f;
-        depth[i] += t;
-        r[i] += t * red;
-        g[i] += t * green;
-        b[i] += t * blue;
-      }
-    }
-  }
-
-  /// Puts the current layer under the band's pixels of `buffer` whose weight for the list has
-  /// the traversal's sign (all pixels when weights is null), and starts a new layer.
-  void Flush(const float* weights, bool ascending, glm::vec4* buffer)
-  {
-    for (int y = this->RowBegin; y <= this->RowEnd; ++y)
-    {
-      glm::ivec2& span = this->Spans[y - this->RowBegin];
-      const std::size_t row = static_cast<std::size_t>(y - this->RowBegin) * this->Stride;
-      const std::size_t pixelRow = static_cast<std::size_t>(y) * this->Width;
-      for (int x = span.x; x <= span.y; ++x)
-      {
-        const std::size_t q = row + x;
-        const float depth = this->Sums[3][q];
-        const glm::vec3 color(this->Sums[0][q], this->Sums[1][q], this->Sums[2][q]);
-        for (auto& sum : this->Sums)
-        {
-          sum[q] = 0.0f;
-        }
-        const std::size_t p = pixelRow + x;
-        if (!(depth > 0.0f) || !IsOpen(weights, ascending, buffer, p))
-        {
-          continue;
-        }
-        glm::vec4& c = buffer[p];
-        // 1 - exp(-t) loses digits only where the layer's opacity is far below an 8-bit step.
-        const float alpha = this->PeakOpacity ? std::min(depth, MaximumPeakOpacity)
-                                              : 1.0f - splat::NegativeExponential(depth);
-        const float coverage = (1.0f - c.a) * alpha;
-        c += glm::vec4((coverage / depth) * color, coverage);
-        this->OpenPixels[x / Lanes] -= c.a >= TerminationAlpha;
-      }
-      span = glm::ivec2(std::numeric_limits<int>::max(), -1);
-    }
-  }
-
-private:
-  static bool IsOpen(const float* weights, bool ascending, const glm::vec4* buffer, std::size_t p)
-  {
-    return buffer[p].a < TerminationAlpha &&
-      (!weights || (ascending ? weights[p] > 0.0f : weights[p] < 0.0f));
-  }
-
-  int Width;
-  int RowBegin;
-  int RowEnd;
-  float Cutoff;
-  bool PeakOpacity;
-  // Band rows are padded by a group of lanes, which the last group of a kernel at the right
-  // edge may reach (adding zeros).
-  static constexpr int Lanes = 8;
-  int Stride;
-  // Per band pixel: the opaque scene's eye depth (infinite where there is none).
-  std::vector<float> SceneDepths;
-  // Per band pixel: optical depth times red, green, blue, and optical depth (opacity in the
-  // peak model), in separate arrays so that the row loop vectorizes.
-  std::array<std::vector<float>, 4> Sums;
-  std::vector<glm::ivec2> Spans; // per band row: the columns the layer touched
-  std::vector<int> OpenPixels;    // per tile of Lanes columns: its open pixels (see Begin)
-};
 }
 
 //------------------------------------------------------------------------------
@@ -289,6 +98,7 @@ void vtkVolumeSplatRasterizer::SetKernels(const Kernels& kernels)
 {
   this->Input = kernels;
   this->Internal->ViewDegree = 0;
+  this->Internal->Sheets->Reset();
   for (auto& list : this->Lists)
   {
     list.clear();
@@ -509,6 +319,18 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
       [](const PixelLists::Band& band) { return band.First <= band.Last; });
   };
 
+  std::array<bool, 4> used{};
+  used[DepthList] = mode == DEPTH_SORTED;
+  for (int list = 0; list < 3 && mode != DEPTH_SORTED; ++list)
+  {
+    used[list] = listUsed(list);
+  }
+  this->SheetsUsed = this->RenderSheets(camera, used);
+  if (this->SheetsUsed)
+  {
+    return;
+  }
+
   // 2. Setup of every kernel, in eye space.
   const Kernels& input = this->Input;
   std::vector<ScreenKernel>& kernels = this->Internal->Kernels;
@@ -599,17 +421,14 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
     const vtkIdType nx = dimensions.x, ny = dimensions.y;
     return list == 0 ? id % nx : (list == 1 ? (id / nx) % ny : id / (nx * ny));
   };
-  std::array<bool, 4> used{};
   if (mode == DEPTH_SORTED)
   {
     this->BuildDepthList();
-    used[DepthList] = true;
   }
   else
   {
     for (int list = 0; list < 3; ++list)
     {
-      used[list] = listUsed(list);
       if (used[list])
       {
         this->GetList(list);
@@ -729,7 +548,7 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
       {
         const int rowBegin = static_cast<int>(b) * BandHeight;
         const int rowEnd = std::min(rowBegin + BandHeight, height) - 1;
-        LayerCompositor compositor(
+        splat::VolumeLayerCompositor compositor(
           width, rowBegin, rowEnd, cutoffF, input.PeakOpacity, sceneDepths);
         const std::size_t first = static_cast<std::size_t>(rowBegin) * width;
         const std::size_t last = static_cast<std::size_t>(rowEnd + 1) * width;
@@ -767,38 +586,113 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
             compositor.Flush(weights, ascending, buffer);
           }
         }
-        for (std::size_t p = first; p < last; ++p)
-        {
-          glm::vec4 color(0.0f);
-          if (mode == DEPTH_SORTED)
-          {
-            color = this->Internal->Buffers[DepthList][p];
-          }
-          else
-          {
-            float sum = 0.0f;
-            for (int list = 0; list < 3; ++list)
-            {
-              const float w = pixelLists.Weights[list][p];
-              if (used[list] && w != 0.0f)
-              {
-                color += (w * w) * this->Internal->Buffers[list][p];
-                sum += w * w;
-              }
-            }
-            color = sum > 0.0f ? color / sum : glm::vec4(0.0f);
-          }
-          color = glm::clamp(color, 0.0f, 1.0f);
-          for (int c = 0; c < 4; ++c)
-          {
-            this->Image[4 * p + c] = color[c];
-            // Premultiplied: a color channel never exceeds alpha.
-            const float v = c < 3 ? std::min(color[c], color.a) : color.a;
-            this->Colors[4 * p + c] = static_cast<std::uint8_t>(std::lround(255.0f * v));
-          }
-        }
+        this->MergeBuffers(first, last, used);
       }
     });
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatRasterizer::MergeBuffers(
+  std::size_t first, std::size_t last, const std::array<bool, 4>& used)
+{
+  for (std::size_t p = first; p < last; ++p)
+  {
+    glm::vec4 color(0.0f);
+    if (this->OrderingMode == DEPTH_SORTED)
+    {
+      color = this->Internal->Buffers[DepthList][p];
+    }
+    else
+    {
+      float sum = 0.0f;
+      for (int list = 0; list < 3; ++list)
+      {
+        const float w = this->Internal->Pixels.Weights[list][p];
+        if (used[list] && w != 0.0f)
+        {
+          color += (w * w) * this->Internal->Buffers[list][p];
+          sum += w * w;
+        }
+      }
+      color = sum > 0.0f ? color / sum : glm::vec4(0.0f);
+    }
+    color = glm::clamp(color, 0.0f, 1.0f);
+    for (int c = 0; c < 4; ++c)
+    {
+      this->Image[4 * p + c] = color[c];
+      // Premultiplied: a color channel never exceeds alpha.
+      const float v = c < 3 ? std::min(color[c], color.a) : color.a;
+      this->Colors[4 * p + c] = static_cast<std::uint8_t>(std::lround(255.0f * v));
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkVolumeSplatRasterizer::RenderSheets(const Camera& camera, const std::array<bool, 4>& used)
+{
+  const Kernels& input = this->Input;
+  if (!this->SheetResampling || !input.GridIds || this->OrderingMode == DEPTH_SORTED)
+  {
+    return false;
+  }
+  // The nearest opaque surface: the sheets need it behind every kernel.
+  const float nearestWindowDepth = this->SceneDepths.empty()
+    ? 1.0f
+    : *std::min_element(this->SceneDepths.begin(), this->SceneDepths.end());
+  const double nearestSceneDepth =
+    splat::EyeDepthsOfWindowDepths(glm::inverse(camera.EyeToClip), { nearestWindowDepth })[0];
+  vtkVolumeSplatSheetCompositor* sheets = this->Internal->Sheets;
+  if (!sheets->BeginFrame(input, camera, this->Cutoff, nearestSceneDepth,
+        { used[0], used[1], used[2] }))
+  {
+    return false;
+  }
+  // Shaded kernels get their colors for this frame; the others emit their own.
+  const float* colors = input.Colors;
+  if (input.Normals)
+  {
+    std::vector<float>& shaded = this->Internal->ShadedColors;
+    shaded.resize(3 * input.Count);
+    const glm::dmat3 linear(camera.ModelToEye);
+    const glm::mat3 normalToEye(glm::transpose(glm::inverse(linear)));
+    const bool parallel = splat::IsParallelProjection(camera.EyeToClip);
+    vtkSMPTools::For(0, static_cast<vtkIdType>(input.Count),
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          const double* p = input.Positions + 3 * i;
+          const glm::vec3 eye(camera.ModelToEye * glm::dvec4(p[0], p[1], p[2], 1.0));
+          const float* c = input.Colors + 3 * i;
+          const glm::vec3 color = this->ShadeKernel(
+            glm::vec3(c[0], c[1], c[2]), eye, normalToEye, input.Normals + 3 * i, parallel);
+          std::copy_n(&color.x, 3, shaded.begin() + 3 * i);
+        }
+      });
+    colors = shaded.data();
+  }
+  const std::size_t pixels = this->Colors.size() / 4;
+  for (int list = 0; list < 3; ++list)
+  {
+    this->Traversed[list] = used[list];
+    if (used[list])
+    {
+      this->Projected[list] = sheets->Render(list, this->GetList(list), colors,
+        input.Normals != nullptr, this->Internal->Pixels.Weights[list].data(),
+        this->Internal->Buffers[list]);
+    }
+  }
+  const vtkIdType chunk = 1 << 14;
+  vtkSMPTools::For(0, static_cast<vtkIdType>((pixels + chunk - 1) / chunk),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType c = begin; c < end; ++c)
+      {
+        this->MergeBuffers(
+          c * chunk, std::min<std::size_t>(pixels, (c + 1) * chunk), used);
+      }
+    });
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -866,6 +760,8 @@ void vtkVolumeSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OrderingMode: " << this->OrderingMode << "\n";
   os << indent << "BlendThreshold: " << this->BlendThreshold << "\n";
   os << indent << "Cutoff: " << this->Cutoff << "\n";
+  os << indent << "SheetResampling: " << this->SheetResampling << "\n";
+  os << indent << "SheetsUsed: " << this->SheetsUsed << "\n";
   os << indent << "Kernels: " << this->Input.Count << "\n";
   os << indent << "Shaded: " << (this->Input.Normals != nullptr) << "\n";
   os << indent << "SphericalHarmonicsDegree: "

@@ -43,6 +43,11 @@
  * integrates along that list and direction is not evaluated at all. A kernel adds nothing to
  * pixels where its center lies behind the opaque scene's depth.
  *
+ * For image data in the axis-list orderings, SheetResampling (the default) replaces steps two
+ * to four by vtkVolumeSplatSheetCompositor where it applies: each list's sheets are composited
+ * in an intermediate image aligned with them and warped to the list's buffer, which is merged as
+ * above; SheetResampling off keeps the exact per-kernel path described here.
+ *
  * Kernels are not validated here: the caller passes finite data only.
  *
  * @sa vtkVolumeSplatMapper
@@ -105,6 +110,25 @@ public:
 
   ///@{
   /**
+   * For image data in the BLENDED, CLIPPED and SINGLE_AXIS orderings: composite each list
+   * sheet by sheet in an intermediate image aligned with the sheets and warp it to the screen
+   * (vtkVolumeSplatSheetCompositor), where it applies; off, or where it does not apply (the eye
+   * between a list's first and last sheets, kernels reaching the near plane, opaque geometry in
+   * front of the volume's far side), every kernel is splatted on the screen (the exact
+   * per-kernel path). Default on.
+   */
+  vtkSetMacro(SheetResampling, bool);
+  vtkGetMacro(SheetResampling, bool);
+  vtkBooleanMacro(SheetResampling, bool);
+  ///@}
+
+  /**
+   * Whether the last frame went through the sheets (SheetResampling).
+   */
+  vtkGetMacro(SheetsUsed, bool);
+
+  ///@{
+  /**
    * The highest spherical-harmonic degree evaluated for kernels with SphericalHarmonics, in
    * [0, 3]; 0 gives their view-independent Colors. Default 3.
    */
@@ -134,7 +158,8 @@ public:
    * - ListFrame: the columns are the unit axes of the lists' frame in model coordinates.
    * - GridIds and GridDimensions: for image data, each kernel's voxel id i + nx (j + ny k),
    *   ascending; the lists are then the grid's sheets and are not sorted. Null for point sets,
-   *   whose lists are sorted by position.
+   *   whose lists are sorted by position. GridAxes and GridOrigin: for image data, the index
+   *   axes (spacing included, as columns) and voxel (0, 0, 0)'s position in model coordinates.
    * - Normals: for shading, a unit normal per kernel in model coordinates (zero where there is
    *   none, which gets the ambient term only); null for unshaded kernels, which emit Colors.
    * - SphericalHarmonics: for view-dependent colors, 3 (SphericalHarmonicsDegree + 1)^2 floats
@@ -155,6 +180,8 @@ public:
     glm::dmat3 ListFrame{ 1.0 };
     const vtkIdType* GridIds = nullptr;
     glm::ivec3 GridDimensions{ 0 };
+    glm::dmat3 GridAxes{ 1.0 };
+    glm::dvec3 GridOrigin{ 0.0 };
     const float* Normals = nullptr;
     const float* SphericalHarmonics = nullptr;
     int SphericalHarmonicsDegree = 0;
@@ -239,6 +266,10 @@ protected:
   void BuildList(int list);
   /// The per-frame depth order of the kept kernels.
   void BuildDepthList();
+  /// The frame through vtkVolumeSplatSheetCompositor; false where it does not apply.
+  bool RenderSheets(const Camera& camera, const std::array<bool, 4>& used);
+  /// Merges the lists' buffers into the image's pixels [first, last).
+  void MergeBuffers(std::size_t first, std::size_t last, const std::array<bool, 4>& used);
   /// The color of a kernel at eye position `eye` lit with its model normal (SetLighting).
   glm::vec3 ShadeKernel(const glm::vec3& color, const glm::vec3& eye,
     const glm::mat3& normalToEye, const float* modelNormal, bool parallelProjection) const;
@@ -250,6 +281,8 @@ protected:
   double BlendThreshold = 0.85;
   double Cutoff;
   int MaximumSphericalHarmonicsDegree = 3;
+  bool SheetResampling = true;
+  bool SheetsUsed = false;
 
   Kernels Input;
   std::array<std::vector<vtkIdType>, 4> Lists;

@@ -248,6 +248,8 @@ struct Grid
     this->Kernels.SharedCovariance = splat::VoxelCovariance(glm::dmat3(h));
     this->Kernels.GridIds = this->Ids.data();
     this->Kernels.GridDimensions = glm::ivec3(n);
+    this->Kernels.GridAxes = glm::dmat3(h);
+    this->Kernels.GridOrigin = glm::dvec3(-0.5 * (n - 1) * h);
   }
 };
 

@@ -10,6 +10,7 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkNIFTIImageReader.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlaneSource.h"
 #include "vtkPolyDataMapper.h"
@@ -19,7 +20,9 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 
 namespace splattest
 {
@@ -242,6 +245,69 @@ inline double RMSE(const std::vector<double>& a, const std::vector<double>& b)
     sum += (a[i] - b[i]) * (a[i] - b[i]);
   }
   return std::sqrt(sum / a.size());
+}
+
+/// A volume image rendered offscreen: its RGB and the time of a frame.
+struct RenderedVolume
+{
+  std::vector<double> RGB;
+  double Milliseconds;
+};
+
+/**
+ * Renders `image` through `mapper` with `property` in a size x size window, from the camera set
+ * by `place(renderer)`; the time is the best of three renders after the first (which builds the
+ * kernels or the ray caster's tables).
+ */
+template <typename Place>
+RenderedVolume RenderVolume(vtkAbstractVolumeMapper* mapper, vtkImageData* image,
+  vtkVolumeProperty* property, int size, Place place)
+{
+  mapper->SetInputDataObject(image);
+  vtkNew<vtkRenderer> renderer;
+  vtkVolume* volume = AddVolume(renderer, mapper, property);
+  renderer->SetBackground(0.0, 0.0, 0.0);
+  auto window = MakeRenderWindow(size, size);
+  window->AddRenderer(renderer);
+  place(renderer.Get());
+  window->Render();
+  double best = 1e300;
+  for (int i = 0; i < 3; ++i)
+  {
+    volume->Modified();
+    const auto start = std::chrono::steady_clock::now();
+    window->Render();
+    best = std::min(best,
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  return { ToRGB(Capture(window)), best };
+}
+
+/// The MRI head ch2.nii.gz of Debian's mricron-data, or null when the file is absent.
+inline vtkSmartPointer<vtkImageData> ReadMri()
+{
+  const std::string path = "/usr/share/mricron/templates/ch2.nii.gz";
+  if (!FileExists(path))
+  {
+    std::printf("%s is absent (Debian package mricron-data): MRI comparison skipped\n",
+      path.c_str());
+    return nullptr;
+  }
+  vtkNew<vtkNIFTIImageReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
+/// The MRI tests' camera: from below and the side, framing the head.
+inline void PlaceMriCamera(vtkRenderer* renderer)
+{
+  renderer->ResetCamera();
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->Elevation(-70.0);
+  camera->OrthogonalizeViewUp();
+  camera->Azimuth(35.0);
+  renderer->ResetCameraClippingRange();
 }
 }
 

@@ -10,49 +10,23 @@
 // The RMSE bounds (MAX_BLOB_RMSE, MAX_MRI_RMSE, MAX_MRI_SHADED_RMSE) and their justification are
 // in CMakeLists.txt.
 // Each mapper's render time is printed.
+#include "SplatVolumeScenes.h" // For splatexample::MriProperty
 #include "SplatVolumeTestUtilities.h"
 #include "vtkVolumeSplatMapper.h"
 
 #include "vtkFixedPointVolumeRayCastMapper.h"
-#include "vtkNIFTIImageReader.h"
 
-#include <chrono>
 #include <cstdio>
 
 namespace
 {
 constexpr int Size = 512;
 
-struct Rendered
-{
-  std::vector<double> RGB;
-  double Milliseconds;
-};
-
-// Renders the image through the mapper from the camera set by `place`; the time is the best of
-// three renders after the first (which builds the kernels or the ray caster's tables).
 template <typename Place>
-Rendered Render(vtkAbstractVolumeMapper* mapper, vtkImageData* image, vtkVolumeProperty* property,
-  Place place)
+splattest::RenderedVolume Render(
+  vtkAbstractVolumeMapper* mapper, vtkImageData* image, vtkVolumeProperty* property, Place place)
 {
-  mapper->SetInputDataObject(image);
-  vtkNew<vtkRenderer> renderer;
-  vtkVolume* volume = splattest::AddVolume(renderer, mapper, property);
-  renderer->SetBackground(0.0, 0.0, 0.0);
-  auto window = splattest::MakeRenderWindow(Size, Size);
-  window->AddRenderer(renderer);
-  place(renderer.Get());
-  window->Render();
-  double best = 1e300;
-  for (int i = 0; i < 3; ++i)
-  {
-    volume->Modified();
-    const auto start = std::chrono::steady_clock::now();
-    window->Render();
-    best = std::min(best,
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  }
-  return { splattest::ToRGB(splattest::Capture(window)), best };
+  return splattest::RenderVolume(mapper, image, property, Size, place);
 }
 }
 
@@ -79,10 +53,10 @@ int main(int, char*[])
       exact = splattest::BlobImage(renderer, sigma, peak, rgb);
     };
     vtkNew<vtkVolumeSplatMapper> splat;
-    const Rendered ours = Render(splat, image, property, place);
+    const splattest::RenderedVolume ours = Render(splat, image, property, place);
     const double ourError = splattest::RMSE(ours.RGB, exact);
     vtkNew<vtkFixedPointVolumeRayCastMapper> rayCast;
-    const Rendered reference = Render(rayCast, image, property, place);
+    const splattest::RenderedVolume reference = Render(rayCast, image, property, place);
     const double rayCastError = splattest::RMSE(reference.RGB, exact);
     std::printf("blob RMSE against the analytic image: splat %.5f (%.1f ms), fixed-point ray cast "
                 "%.5f (%.1f ms)\n",
@@ -95,46 +69,17 @@ int main(int, char*[])
   }
 
   // 2. The MRI head.
-  const std::string path = "/usr/share/mricron/templates/ch2.nii.gz";
-  if (!splattest::FileExists(path))
+  vtkSmartPointer<vtkImageData> head = splattest::ReadMri();
+  if (!head)
   {
-    std::printf("%s is absent (Debian package mricron-data): MRI comparison skipped\n",
-      path.c_str());
     return failures ? EXIT_FAILURE : splattest::SkipReturnCode;
   }
-  vtkNew<vtkNIFTIImageReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkImageData* head = reader->GetOutput();
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0.0, 0.0);
-  opacity->AddPoint(40.0, 0.0);
-  opacity->AddPoint(90.0, 0.05);
-  opacity->AddPoint(255.0, 0.2);
-  vtkNew<vtkColorTransferFunction> color;
-  color->AddRGBPoint(0.0, 0.0, 0.0, 0.0);
-  color->AddRGBPoint(60.0, 0.8, 0.4, 0.3);
-  color->AddRGBPoint(140.0, 1.0, 0.9, 0.8);
-  color->AddRGBPoint(255.0, 1.0, 1.0, 1.0);
-  vtkNew<vtkVolumeProperty> property;
-  property->SetScalarOpacity(opacity);
-  property->SetColor(color);
-  property->SetScalarOpacityUnitDistance(1.0);
-  property->SetInterpolationTypeToLinear();
-  property->ShadeOff();
-  auto place = [](vtkRenderer* renderer)
-  {
-    renderer->ResetCamera();
-    vtkCamera* camera = renderer->GetActiveCamera();
-    camera->Elevation(-70.0);
-    camera->OrthogonalizeViewUp();
-    camera->Azimuth(35.0);
-    renderer->ResetCameraClippingRange();
-  };
+  vtkSmartPointer<vtkVolumeProperty> property = splatexample::MriProperty();
+  auto place = splattest::PlaceMriCamera;
   vtkNew<vtkVolumeSplatMapper> splat;
-  const Rendered ours = Render(splat, head, property, place);
+  const splattest::RenderedVolume ours = Render(splat, head, property, place);
   vtkNew<vtkFixedPointVolumeRayCastMapper> rayCast;
-  const Rendered reference = Render(rayCast, head, property, place);
+  const splattest::RenderedVolume reference = Render(rayCast, head, property, place);
   const double error = splattest::RMSE(ours.RGB, reference.RGB);
   std::printf("MRI RMSE splat vs fixed-point ray cast: %.5f; %lld kernels of %d voxels, %lld "
               "projected; splat %.1f ms, ray cast %.1f ms at %dx%d\n",
@@ -150,9 +95,9 @@ int main(int, char*[])
 
   property->ShadeOn();
   vtkNew<vtkVolumeSplatMapper> shadedSplat;
-  const Rendered shaded = Render(shadedSplat, head, property, place);
+  const splattest::RenderedVolume shaded = Render(shadedSplat, head, property, place);
   vtkNew<vtkFixedPointVolumeRayCastMapper> shadedRayCast;
-  const Rendered shadedReference = Render(shadedRayCast, head, property, place);
+  const splattest::RenderedVolume shadedReference = Render(shadedRayCast, head, property, place);
   const double shadedError = splattest::RMSE(shaded.RGB, shadedReference.RGB);
   const double unshadedError = splattest::RMSE(ours.RGB, shadedReference.RGB);
   std::printf("MRI shaded RMSE splat vs fixed-point ray cast: %.5f (unshaded splats: %.5f); "

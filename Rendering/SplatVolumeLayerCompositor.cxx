@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "SplatVolumeLayerCompositor.h"
+
+#include "SplatExponential.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace
+{
+// The most a kernel of the 3D Gaussian Splatting convention covers a pixel, as in its viewers.
+constexpr float MaximumPeakOpacity = 0.99f;
+}
+
+namespace splat
+{
+//------------------------------------------------------------------------------
+VolumeLayerCompositor::VolumeLayerCompositor(int width, int rowBegin, int rowEnd, float cutoff,
+  bool peakOpacity, const float* sceneDepths)
+  : Width(width)
+  , RowBegin(rowBegin)
+  , RowEnd(rowEnd)
+  , Cutoff(cutoff)
+  , PeakOpacity(peakOpacity)
+  , Stride(width + Lanes)
+  , Spans(rowEnd - rowBegin + 1, glm::ivec2(std::numeric_limits<int>::max(), -1))
+  , OpenPixels((width + Lanes - 1) / Lanes, 0)
+{
+  const std::size_t size = static_cast<std::size_t>(rowEnd - rowBegin + 1) * this->Stride;
+  for (auto& sum : this->Sums)
+  {
+    sum.assign(size, 0.0f);
+  }
+  this->SceneDepths.assign(size, std::numeric_limits<float>::infinity());
+  for (int y = rowBegin; sceneDepths && y <= rowEnd; ++y)
+  {
+    std::copy_n(sceneDepths + static_cast<std::size_t>(y) * width, width,
+      this->SceneDepths.begin() + static_cast<std::size_t>(y - rowBegin) * this->Stride);
+  }
+}
+
+//------------------------------------------------------------------------------
+void VolumeLayerCompositor::Begin(const float* weights, bool ascending, const glm::vec4* buffer)
+{
+  std::fill(this->OpenPixels.begin(), this->OpenPixels.end(), 0);
+  for (int y = this->RowBegin; y <= this->RowEnd; ++y)
+  {
+    const std::size_t pixelRow = static_cast<std::size_t>(y) * this->Width;
+    for (int x = 0; x < this->Width; ++x)
+    {
+      const std::size_t p = pixelRow + x;
+      this->OpenPixels[x / Lanes] += IsOpen(weights, ascending, buffer, p);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
+{
+  if (!this->Reaches(s))
+  {
+    return;
+  }
+  const int y0 = std::max(s.Y0, this->RowBegin);
+  const int y1 = std::min(s.Y1, this->RowEnd);
+  const float xx = s.ConicXX;
+  const float amplitude = s.Amplitude;
+  const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
+  const float kernelDepth = s.Depth;
+  const float cutoff = this->Cutoff;
+  const int columns = s.X1 - s.X0 + 1;
+  // Whole groups of lanes over the box's columns, the cutoff ellipse as a mask: no per-row
+  // span and no scalar remainder.
+  const int count = ((columns + Lanes - 1) / Lanes) * Lanes;
+  const float dx0 = s.X0 + 0.5f - s.CenterX;
+  for (int y = y0; y <= y1; ++y)
+  {
+    const float dy = y + 0.5f - s.CenterY;
+    const float bq = s.ConicXY * dy;
+    const float yTerm = s.ConicYY * dy * dy;
+    const std::size_t row = this->Row(y, s);
+    float* __restrict depth = this->Sums[3].data() + row;
+    float* __restrict r = this->Sums[0].data() + row;
+    float* __restrict g = this->Sums[1].data() + row;
+    float* __restrict b = this->Sums[2].data() + row;
+    const float* __restrict sceneDepths = this->SceneDepths.data() + row;
+    for (int i = 0; i < count; ++i)
+    {
+      const float dx = dx0 + static_cast<float>(i);
+      const float beta = (xx * dx + bq) * dx + yTerm;
+      const float e = amplitude * splat::NegativeExponential(beta);
+      // Behind the opaque scene the kernel adds nothing.
+      const bool inside = (beta < cutoff) & (i < columns) & (kernelDepth <= sceneDepths[i]);
+      const float t = inside ? e : 0.0f;
+      depth[i] += t;
+      r[i] += t * red;
+      g[i] += t * green;
+      b[i] += t * blue;
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+SPLAT_VECTOR_CLONES void VolumeLayerCompositor::AddFactored(
+  const ScreenKernel& s, const float* cross, int reach, int crossStride)
+{
+  if (!this->Reaches(s))
+  {
+    return;
+  }
+  const int y0 = std::max(s.Y0, this->RowBegin);
+  const int y1 = std::min(s.Y1, this->RowEnd);
+  const int columns = s.X1 - s.X0 + 1;
+  const int count = ((columns + Lanes - 1) / Lanes) * Lanes;
+  // Offsets from the pixel holding the center, where the cross table is centered.
+  const int xc = static_cast<int>(std::floor(s.CenterX));
+  const int yc = static_cast<int>(std::floor(s.CenterY));
+  const float dxc = xc + 0.5f - s.CenterX;
+  const float dyc = yc + 0.5f - s.CenterY;
+  const float xx = s.ConicXX, xy = s.ConicXY, yy = s.ConicYY;
+  alignas(32) float columnFactors[MaximumFactoredColumns];
+  const int m0 = s.X0 - xc;
+  for (int i = 0; i < count; ++i)
+  {
+    const float m = static_cast<float>(m0 + i);
+    const float dx = dxc + m;
+    const float factor = splat::NegativeExponential(xx * dx * dx + xy * dyc * m);
+    columnFactors[i] = i < columns ? factor : 0.0f;
+  }
+  // The rows' factors in one vectorized pass too.
+  alignas(32) float rowFactors[MaximumFactoredColumns];
+  const int rows = std::max(y1 - y0 + 1, 0);
+  const int n0 = y0 - yc;
+  for (int j = 0; j < ((rows + Lanes - 1) / Lanes) * Lanes; ++j)
+  {
+    const float n = static_cast<float>(n0 + j);
+    const float dy = dyc + n;
+    rowFactors[j] = s.Amplitude * splat::NegativeExponential(yy * dy * dy + xy * dxc * (n + dyc));
+  }
+  const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
+  for (int y = y0; y <= y1; ++y)
+  {
+    const int n = y - yc;
+    const float rowFactor = rowFactors[y - y0];
+    const std::size_t row = this->Row(y, s);
+    float* __restrict depth = this->Sums[3].data() + row;
+    float* __restrict r = this->Sums[0].data() + row;
+    float* __restrict g = this->Sums[1].data() + row;
+    float* __restrict b = this->Sums[2].data() + row;
+    const float* __restrict crossRow =
+      cross + static_cast<std::size_t>(n + reach) * crossStride + (m0 + reach);
+    for (int i = 0; i < count; ++i)
+    {
+      const float t = rowFactor * columnFactors[i] * crossRow[i];
+      depth[i] += t;
+      r[i] += t * red;
+      g[i] += t * green;
+      b[i] += t * blue;
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void VolumeLayerCompositor::Flush(const float* weights, bool ascending, glm::vec4* buffer)
+{
+  for (int y = this->RowBegin; y <= this->RowEnd; ++y)
+  {
+    glm::ivec2& span = this->Spans[y - this->RowBegin];
+    const std::size_t row = static_cast<std::size_t>(y - this->RowBegin) * this->Stride;
+    const std::size_t pixelRow = static_cast<std::size_t>(y) * this->Width;
+    for (int x = span.x; x <= span.y; ++x)
+    {
+      const std::size_t q = row + x;
+      const float depth = this->Sums[3][q];
+      const glm::vec3 color(this->Sums[0][q], this->Sums[1][q], this->Sums[2][q]);
+      for (auto& sum : this->Sums)
+      {
+        sum[q] = 0.0f;
+      }
+      const std::size_t p = pixelRow + x;
+      if (!(depth > 0.0f) || !IsOpen(weights, ascending, buffer, p))
+      {
+        continue;
+      }
+      glm::vec4& c = buffer[p];
+      // 1 - exp(-t) loses digits only where the layer's opacity is far below an 8-bit step.
+      const float alpha = this->PeakOpacity ? std::min(depth, MaximumPeakOpacity)
+                                            : 1.0f - splat::NegativeExponential(depth);
+      const float coverage = (1.0f - c.a) * alpha;
+      c += glm::vec4((coverage / depth) * color, coverage);
+      this->OpenPixels[x / Lanes] -= c.a >= TerminationAlpha;
+    }
+    span = glm::ivec2(std::numeric_limits<int>::max(), -1);
+  }
+}
+}

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SplatVolumeLayerCompositor.h
+ * @brief Front-to-back compositing of layers of volume footprints into a band of image rows:
+ * the per-pixel loop of vtkVolumeSplatRasterizer, on the screen for the exact per-kernel path
+ * and on a sheet-aligned intermediate image for vtkVolumeSplatSheetCompositor.
+ *
+ * A layer is a sheet of the grid for image data (kernels side by side at one index along the
+ * list's axis, whose order within the sheet is arbitrary) and a single kernel otherwise. A
+ * layer's footprints are first summed per pixel as optical depth and optical-depth-weighted
+ * color; the layer then goes under the pixel once, with opacity 1 - exp(-sum). That is the
+ * transmittance of compositing its kernels one by one, with colors weighted by each kernel's
+ * share of the optical depth, independent of their order, and one exponential per pixel and
+ * layer instead of one per kernel and pixel.
+ */
+#ifndef SplatVolumeLayerCompositor_h
+#define SplatVolumeLayerCompositor_h
+
+#include "vtkVolumeSplatRasterizer.h"
+
+#include <glm/glm.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+// Where GCC can dispatch on the running CPU (ifunc, x86-64 glibc), the per-pixel loops are also
+// built for AVX2 and FMA: twice the lanes of the SSE2 baseline, and the exponential's polynomial
+// in fused steps.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define SPLAT_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define SPLAT_VECTOR_CLONES
+#endif
+
+// For the small helpers of those loops, which GCC otherwise leaves out of line in the clones.
+#if defined(__GNUC__)
+#define SPLAT_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define SPLAT_ALWAYS_INLINE inline
+#endif
+
+namespace splat
+{
+/// Why the setup left a kernel out of a frame.
+enum VolumeSkipReason : std::uint8_t
+{
+  Kept = 0,
+  NearPlane,
+  OutsideFrustum
+};
+
+/// Accumulated opacity at which a pixel stops integrating: what is behind changes it by less
+/// than half an 8-bit step.
+constexpr float TerminationAlpha = 1.0f - 1.0f / 512.0f;
+}
+
+/// One kernel after setup, in the single precision the per-pixel loop uses.
+struct vtkVolumeSplatRasterizer::ScreenKernel
+{
+  float CenterX, CenterY;
+  float ConicXX, ConicXY, ConicYY; // 1/2 M^-1, so that beta = d^T C d
+  float Amplitude; // optical depth (density model) or opacity (peak model) at the center
+  float Depth;     // eye-space depth of the center
+  float Color[3];
+  int X0, X1, Y0, Y1; // inclusive pixel bounds
+  splat::VolumeSkipReason Skip;
+};
+
+namespace splat
+{
+/// Composites the kernels of one list into one band of its buffer, front to back, layer by
+/// layer (see the file comment).
+class VolumeLayerCompositor
+{
+public:
+  using ScreenKernel = vtkVolumeSplatRasterizer::ScreenKernel;
+
+  /// A band of rows [rowBegin, rowEnd] of an image `width` pixels wide; sceneDepths, when not
+  /// null, holds the opaque scene's eye depth per image pixel.
+  VolumeLayerCompositor(int width, int rowBegin, int rowEnd, float cutoff, bool peakOpacity,
+    const float* sceneDepths);
+
+  /// Starts a traversal of a list into `buffer`: a band pixel is open while it integrates, that
+  /// is below the termination opacity and, when weights is not null, with the traversal's sign.
+  void Begin(const float* weights, bool ascending, const glm::vec4* buffer);
+
+  /// Adds kernel s to the current layer, unless every pixel of the columns it covers has stopped
+  /// integrating or does not take this traversal (early termination per tile of the band's rows
+  /// by Lanes columns): Flush would leave its sums unused.
+  void Add(const ScreenKernel& s);
+
+  /**
+   * Adds kernel s as Add does, over its whole box (no cutoff ellipse), with its footprint
+   * factored: for the pixel at offset (m, n) from the one holding the kernel's center,
+   * exp(-beta) is a factor of column m times a factor of row n times
+   * cross[(n + reach) crossStride + m + reach] = exp(-ConicXY m n), a table of the kernels'
+   * shared conic. That is one exponential per column and row instead of one per pixel. The
+   * table must cover the box (|m|, |n| <= reach, a further group of lanes of zeros per row).
+   */
+  void AddFactored(const ScreenKernel& s, const float* cross, int reach, int crossStride);
+
+  /// Puts the current layer under the band's pixels of `buffer` whose weight for the list has
+  /// the traversal's sign (all pixels when weights is null), and starts a new layer.
+  void Flush(const float* weights, bool ascending, glm::vec4* buffer);
+
+  /// The most columns and rows AddFactored takes.
+  static constexpr int MaximumFactoredColumns = 64;
+
+private:
+  /// Whether some pixel of the columns kernel s covers still integrates (see Add).
+  SPLAT_ALWAYS_INLINE bool Reaches(const ScreenKernel& s) const
+  {
+    for (int tile = s.X0 / Lanes; tile <= s.X1 / Lanes; ++tile)
+    {
+      if (this->OpenPixels[tile] > 0)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// Where the sums of band row y start at kernel s's first column; the layer's span of the row
+  /// grows to the kernel's columns.
+  SPLAT_ALWAYS_INLINE std::size_t Row(int y, const ScreenKernel& s)
+  {
+    glm::ivec2& span = this->Spans[y - this->RowBegin];
+    span = glm::ivec2(std::min(span.x, s.X0), std::max(span.y, s.X1));
+    return static_cast<std::size_t>(y - this->RowBegin) * this->Stride + s.X0;
+  }
+
+  static bool IsOpen(const float* weights, bool ascending, const glm::vec4* buffer, std::size_t p)
+  {
+    return buffer[p].a < TerminationAlpha &&
+      (!weights || (ascending ? weights[p] > 0.0f : weights[p] < 0.0f));
+  }
+
+  int Width;
+  int RowBegin;
+  int RowEnd;
+  float Cutoff;
+  bool PeakOpacity;
+  // Band rows are padded by a group of lanes, which the last group of a kernel at the right
+  // edge may reach (adding zeros).
+  static constexpr int Lanes = 8;
+  int Stride;
+  // Per band pixel: the opaque scene's eye depth (infinite where there is none).
+  std::vector<float> SceneDepths;
+  // Per band pixel: optical depth times red, green, blue, and optical depth (opacity in the
+  // peak model), in separate arrays so that the row loop vectorizes.
+  std::array<std::vector<float>, 4> Sums;
+  std::vector<glm::ivec2> Spans; // per band row: the columns the layer touched
+  std::vector<int> OpenPixels;    // per tile of Lanes columns: its open pixels (see Begin)
+};
+}
+
+#endif

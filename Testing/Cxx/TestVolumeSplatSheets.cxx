@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkVolumeSplatMapper's sheet resampling of image data (vtkVolumeSplatSheetCompositor, the
+// default) against its exact per-kernel path (SetSheetResampling(false)) at 512 x 512, BLENDED:
+// 1. the Gaussian blob of TestVolumeSplatCrossRenderer from its perspective camera, along the
+//    diagonal (all three lists) and in a parallel projection;
+// 2. the MRI head ch2.nii.gz (mricron-data; skipped with 125 when absent) with the camera and
+//    transfer functions of TestVolumeSplatCrossRenderer, unshaded and shaded.
+// Each view's RMSE and largest difference must stay within MAX_BLOB_RMSE, MAX_MRI_RMSE and
+// MAX_DIFFERENCE (their measurements are in CMakeLists.txt), and the two paths must differ at all
+// (else the sheets did not run). Both paths' frame times are printed.
+#include "SplatVolumeScenes.h" // For splatexample::MriProperty
+#include "SplatVolumeTestUtilities.h"
+#include "vtkVolumeSplatMapper.h"
+
+#include <cstdio>
+#include <functional>
+
+namespace
+{
+constexpr int Size = 512;
+
+// Renders `image` both ways from the camera set by `place`; counts a failure when they differ by
+// more than the bounds or not at all.
+int Compare(const char* name, vtkImageData* image, vtkVolumeProperty* property,
+  const std::function<void(vtkRenderer*)>& place, double maximumRMSE)
+{
+  splattest::RenderedVolume both[2];
+  for (const bool sheets : { true, false })
+  {
+    vtkNew<vtkVolumeSplatMapper> mapper;
+    mapper->SetSheetResampling(sheets);
+    both[sheets ? 0 : 1] = splattest::RenderVolume(mapper, image, property, Size, place);
+  }
+  const double rmse = splattest::RMSE(both[0].RGB, both[1].RGB);
+  double largest = 0.0;
+  for (std::size_t i = 0; i < both[0].RGB.size(); ++i)
+  {
+    largest = std::max(largest, std::abs(both[0].RGB[i] - both[1].RGB[i]));
+  }
+  std::printf("%-22s sheets vs exact RMSE %.5f (bound %.4f), largest %.3f (bound %.3f); sheets "
+              "%.1f ms, exact %.1f ms\n",
+    name, rmse, maximumRMSE, largest, MAX_DIFFERENCE, both[0].Milliseconds, both[1].Milliseconds);
+  if (!(rmse <= maximumRMSE) || !(largest <= MAX_DIFFERENCE) || !(rmse > 0.0))
+  {
+    std::fprintf(stderr, "FAILED: %s: the sheets differ from the exact path out of bounds, or "
+                         "did not run\n",
+      name);
+    return 1;
+  }
+  return 0;
+}
+
+// A camera looking at the origin from `position`, perspective or parallel.
+std::function<void(vtkRenderer*)> LookFrom(double x, double y, double z, bool parallel)
+{
+  return [=](vtkRenderer* renderer)
+  {
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetPosition(x, y, z);
+    camera->SetFocalPoint(0.0, 0.0, 0.0);
+    camera->SetViewUp(0.0, 1.0, 0.0);
+    camera->SetViewAngle(30.0);
+    camera->SetParallelProjection(parallel);
+    camera->SetParallelScale(0.8);
+    renderer->ResetCameraClippingRange();
+  };
+}
+}
+
+int main(int, char*[])
+{
+  int failures = 0;
+  // 1. The blob: sigma 0.25 on a 64^3 grid of spacing 1/32.
+  const double sigma = 0.25, peak = 6.0, rgb[3] = { 1.0, 0.7, 0.4 };
+  auto blob = splattest::GaussianBlob(64, 1.0 / 32.0, sigma, peak);
+  auto extinction = splattest::ExtinctionProperty(peak, 1.0 / 32.0, rgb);
+  failures += Compare("blob", blob, extinction, LookFrom(0.9, 0.7, 2.6, false), MAX_BLOB_RMSE);
+  failures +=
+    Compare("blob diagonal", blob, extinction, LookFrom(1.6, 1.6, 1.6, false), MAX_BLOB_RMSE);
+  failures +=
+    Compare("blob parallel", blob, extinction, LookFrom(0.9, 0.7, 2.6, true), MAX_BLOB_RMSE);
+
+  // 2. The MRI head.
+  vtkSmartPointer<vtkImageData> head = splattest::ReadMri();
+  if (!head)
+  {
+    return failures ? EXIT_FAILURE : splattest::SkipReturnCode;
+  }
+  vtkSmartPointer<vtkVolumeProperty> property = splatexample::MriProperty();
+  failures += Compare("MRI", head, property, splattest::PlaceMriCamera, MAX_MRI_RMSE);
+  property->ShadeOn();
+  failures += Compare("MRI shaded", head, property, splattest::PlaceMriCamera, MAX_MRI_RMSE);
+  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+}
