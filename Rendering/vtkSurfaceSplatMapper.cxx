@@ -73,16 +73,8 @@ struct vtkSurfaceSplatMapper::SurfelArrays
 
   vtkSurfaceSplatRasterizer::Surfels View() const
   {
-    vtkSurfaceSplatRasterizer::Surfels s;
-    s.Positions = this->Positions.data();
-    s.Normals = this->Normals.data();
-    s.Axes0 = this->Axes0.data();
-    s.Axes1 = this->Axes1.data();
-    s.Colors = this->Colors.data();
-    s.Opacities = this->Opacities.empty() ? nullptr : this->Opacities.data();
-    s.Curvatures = this->Curvatures.empty() ? nullptr : this->Curvatures.data();
-    s.Count = this->Normals.size() / 3;
-    return s;
+    return vtkSurfaceSplatRasterizer::Surfels::Of(this->Positions, this->Normals, this->Axes0,
+      this->Axes1, this->Colors, this->Opacities, this->Curvatures);
   }
 };
 

@@ -614,7 +614,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<vtkSurfelHierarchy::BackRegion>& backRegions = this->Internal->BackRegions;
   backRegions.clear();
   this->MergedCount = hierarchy
-    ? hierarchy->Select(camera, this->MinifiedVariance, items, backRegions)
+    ? hierarchy->Select(camera, this->MinifiedVariance, items, backRegions, MinimumMergedShare)
     : vtkIdType(0);
   // The hierarchy's order reads the surfels out of their order in memory: where it merges
   // few of them, drawing them in order is faster.

@@ -173,6 +173,25 @@ public:
     /// Coarser levels of these surfels, for minified splats (see vtkSurfelHierarchy): drawn
     /// where the EWA filter minifies opaque surfels. Null for none.
     const vtkSurfelHierarchy* Hierarchy = nullptr;
+
+    /// Surfels over arrays held in vectors: 3 values per surfel, 1 opacity, 2 curvatures;
+    /// empty opacities or curvatures for none.
+    static Surfels Of(const std::vector<double>& positions, const std::vector<float>& normals,
+      const std::vector<float>& axes0, const std::vector<float>& axes1,
+      const std::vector<float>& colors, const std::vector<float>& opacities = {},
+      const std::vector<float>& curvatures = {})
+    {
+      Surfels s;
+      s.Positions = positions.data();
+      s.Normals = normals.data();
+      s.Axes0 = axes0.data();
+      s.Axes1 = axes1.data();
+      s.Colors = colors.data();
+      s.Opacities = opacities.empty() ? nullptr : opacities.data();
+      s.Curvatures = curvatures.empty() ? nullptr : curvatures.data();
+      s.Count = normals.size() / 3;
+      return s;
+    }
   };
 
   /**

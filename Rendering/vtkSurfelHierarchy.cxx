@@ -72,12 +72,23 @@ struct Moments
   glm::dvec3 Color{ 0.0 };
 };
 
+glm::dvec3 Axis(const float* axes, std::size_t i)
+{
+  return glm::dvec3(axes[3 * i], axes[3 * i + 1], axes[3 * i + 2]);
+}
+
+// A surfel's mass: the area its axes span.
+double SurfelArea(const vtkSurfaceSplatRasterizer::Surfels& s, std::size_t i)
+{
+  return glm::length(glm::cross(Axis(s.Axes0, i), Axis(s.Axes1, i)));
+}
+
 Moments SurfelMoments(const vtkSurfaceSplatRasterizer::Surfels& s, std::size_t i)
 {
-  const glm::dvec3 a0(s.Axes0[3 * i], s.Axes0[3 * i + 1], s.Axes0[3 * i + 2]);
-  const glm::dvec3 a1(s.Axes1[3 * i], s.Axes1[3 * i + 1], s.Axes1[3 * i + 2]);
+  const glm::dvec3 a0 = Axis(s.Axes0, i);
+  const glm::dvec3 a1 = Axis(s.Axes1, i);
   Moments m;
-  m.Mass = glm::length(glm::cross(a0, a1));
+  m.Mass = SurfelArea(s, i);
   m.Position = glm::dvec3(s.Positions[3 * i], s.Positions[3 * i + 1], s.Positions[3 * i + 2]);
   m.Covariance = 0.5 * (glm::outerProduct(a0, a0) + glm::outerProduct(a1, a1));
   m.Normal = m.Mass * glm::dvec3(s.Normals[3 * i], s.Normals[3 * i + 1], s.Normals[3 * i + 2]);
@@ -133,14 +144,8 @@ vtkIdType vtkSurfelHierarchy::GetNumberOfNodes(int level) const
 //------------------------------------------------------------------------------
 vtkSurfaceSplatRasterizer::Surfels vtkSurfelHierarchy::GetMergedSurfels() const
 {
-  vtkSurfaceSplatRasterizer::Surfels s;
-  s.Positions = this->Positions.data();
-  s.Normals = this->Normals.data();
-  s.Axes0 = this->Axes0.data();
-  s.Axes1 = this->Axes1.data();
-  s.Colors = this->Colors.data();
-  s.Count = this->MassScales.size();
-  return s;
+  return vtkSurfaceSplatRasterizer::Surfels::Of(
+    this->Positions, this->Normals, this->Axes0, this->Axes1, this->Colors);
 }
 
 //------------------------------------------------------------------------------
@@ -175,7 +180,7 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
       surfels.Positions[3 * i], surfels.Positions[3 * i + 1], surfels.Positions[3 * i + 2]);
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
-    area += SurfelMoments(surfels, i).Mass;
+    area += SurfelArea(surfels, i);
   }
   const double spacing = std::sqrt(area / static_cast<double>(n));
   const glm::dvec3 extent = hi - lo;
@@ -391,19 +396,21 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
 vtkIdType vtkSurfelHierarchy::Select(const vtkSurfaceSplatRasterizer::Camera& camera,
   double variance, std::vector<std::uint32_t>& items) const
 {
-  return this->SelectBlocks(camera, variance, items, nullptr);
+  return this->SelectBlocks(camera, variance, items, nullptr, 0.0);
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkSurfelHierarchy::Select(const vtkSurfaceSplatRasterizer::Camera& camera,
-  double variance, std::vector<std::uint32_t>& items, std::vector<BackRegion>& backRegions) const
+  double variance, std::vector<std::uint32_t>& items, std::vector<BackRegion>& backRegions,
+  double minimumMerged) const
 {
-  return this->SelectBlocks(camera, variance, items, &backRegions);
+  return this->SelectBlocks(camera, variance, items, &backRegions, minimumMerged);
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Camera& camera,
-  double variance, std::vector<std::uint32_t>& items, std::vector<BackRegion>* backRegions) const
+  double variance, std::vector<std::uint32_t>& items, std::vector<BackRegion>* backRegions,
+  double minimumMerged) const
 {
   items.clear();
   if (backRegions)
@@ -507,6 +514,7 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
   };
 
   std::vector<std::vector<std::uint32_t>> blockItems(blockCount);
+  std::vector<int> chosen(blockCount);
   std::vector<char> away(blockCount);
   std::vector<vtkIdType> merged(blockCount, 0);
   vtkSMPTools::For(0, blockCount,
@@ -530,8 +538,29 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
             break;
           }
         }
+        chosen[b] = level;
         away[b] = facesAway(block, center);
-        visit(b, level,
+      }
+    });
+  vtkIdType mergeable = 0;
+  for (vtkIdType b = 0; b < blockCount; ++b)
+  {
+    mergeable += chosen[b] > 0 ? blocks[b + 1] - blocks[b] : 0;
+  }
+  if (mergeable == 0 || mergeable < minimumMerged * static_cast<double>(this->SurfelCount))
+  {
+    if (backRegions)
+    {
+      backRegions->clear();
+    }
+    return 0;
+  }
+  vtkSMPTools::For(0, blockCount,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType b = begin; b < end; ++b)
+      {
+        visit(b, chosen[b],
           [&](std::uint32_t item, std::uint32_t surfels)
           {
             blockItems[b].push_back(item);

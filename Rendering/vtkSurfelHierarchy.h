@@ -71,7 +71,8 @@ public:
    * splats' warped basis variance (see vtkSurfaceSplatRasterizer::SetMinifiedVariance) is at
    * most `variance` pixels^2 at the block's nearest depth, or its surfels. An item i below
    * GetNumberOfSurfels() is surfel i; any other is merged node i - GetNumberOfSurfels().
-   * Returns the number of surfels the merged nodes among them stand for.
+   * Returns the number of surfels the merged nodes among them stand for. Where no block merges
+   * it selects nothing: the surfels are drawn as they are.
    */
   vtkIdType Select(const vtkSurfaceSplatRasterizer::Camera& camera, double variance,
     std::vector<std::uint32_t>& items) const;
@@ -93,10 +94,13 @@ public:
 
   /**
    * Select() that also lists the regions whose splats all face away from the eye: their items
-   * come last, region by region, after those of the regions that may face it.
+   * come last, region by region, after those of the regions that may face it. Selects nothing
+   * (returns 0, no items) where the regions drawn merged hold less than minimumMerged of the
+   * surfels.
    */
   vtkIdType Select(const vtkSurfaceSplatRasterizer::Camera& camera, double variance,
-    std::vector<std::uint32_t>& items, std::vector<BackRegion>& backRegions) const;
+    std::vector<std::uint32_t>& items, std::vector<BackRegion>& backRegions,
+    double minimumMerged = 0.0) const;
 
 protected:
   vtkSurfelHierarchy() = default;
@@ -107,7 +111,8 @@ private:
   void operator=(const vtkSurfelHierarchy&) = delete;
 
   vtkIdType SelectBlocks(const vtkSurfaceSplatRasterizer::Camera& camera, double variance,
-    std::vector<std::uint32_t>& items, std::vector<BackRegion>* backRegions) const;
+    std::vector<std::uint32_t>& items, std::vector<BackRegion>* backRegions,
+    double minimumMerged) const;
 
   vtkIdType SurfelCount = 0;
   double Spacing = 0.0;

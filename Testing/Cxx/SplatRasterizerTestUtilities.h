@@ -77,15 +77,8 @@ struct SurfelGrid
 
   vtkSurfaceSplatRasterizer::Surfels View() const
   {
-    vtkSurfaceSplatRasterizer::Surfels s;
-    s.Positions = this->Positions.data();
-    s.Normals = this->Normals.data();
-    s.Axes0 = this->Axes0.data();
-    s.Axes1 = this->Axes1.data();
-    s.Colors = this->Colors.data();
-    s.Opacities = this->Opacities.empty() ? nullptr : this->Opacities.data();
-    s.Count = this->Normals.size() / 3;
-    return s;
+    return vtkSurfaceSplatRasterizer::Surfels::Of(
+      this->Positions, this->Normals, this->Axes0, this->Axes1, this->Colors, this->Opacities);
   }
 
   // Appends a copy of the grid moved to height z, with one color and opacity.

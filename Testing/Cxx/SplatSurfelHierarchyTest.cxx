@@ -122,8 +122,9 @@ TEST(SurfelHierarchy, SidesOfAThinPlateNeverMerge)
   }
 }
 
-// Near, the surfels are drawn; far, merged nodes stand for all of them; every surfel is drawn
-// once, by itself or by a node.
+// Near, nothing merges and nothing is selected (the surfels are drawn as they are); far, merged
+// nodes stand for all of them; along a strip from near to far, each surfel is drawn once, by
+// itself or by the node that stands for it.
 TEST(SurfelHierarchy, SelectionFollowsTheDistance)
 {
   const SurfelGrid plane(200, 0.005, glm::vec3(1.0f));
@@ -133,14 +134,7 @@ TEST(SurfelHierarchy, SelectionFollowsTheDistance)
   std::vector<std::uint32_t> items;
   // Near: 0.005 units span about 4.7 pixels at distance 2 in 512^2.
   EXPECT_EQ(hierarchy->Select(CameraAt(2.0, 512), 0.75, items), 0);
-  EXPECT_EQ(items.size(), n);
-  std::vector<int> drawn(n, 0);
-  for (const std::uint32_t item : items)
-  {
-    ASSERT_LT(item, n);
-    ++drawn[item];
-  }
-  EXPECT_TRUE(std::all_of(drawn.begin(), drawn.end(), [](int d) { return d == 1; }));
+  EXPECT_TRUE(items.empty());
   // Far: 0.005 units span about 0.19 pixels at distance 50.
   const vtkIdType merged = hierarchy->Select(CameraAt(50.0, 512), 0.75, items);
   EXPECT_EQ(merged, static_cast<vtkIdType>(n));
@@ -150,6 +144,31 @@ TEST(SurfelHierarchy, SelectionFollowsTheDistance)
     EXPECT_GE(item, n);
   }
   std::printf("plane of %zu surfels: %zu splats at distance 50\n", n, items.size());
+
+  const SurfelGrid strip(40, 2000, 0.005, 0.005, 0.005, 0.005,
+    [](double, double) { return glm::vec3(1.0f); });
+  const std::size_t m = strip.Normals.size() / 3;
+  hierarchy->Build(strip.View());
+  vtkSurfaceSplatRasterizer::Camera camera = CameraAt(1.0, 512);
+  camera.ModelToEye =
+    glm::lookAt(glm::dvec3(0.0, -8.0, 1.0), glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0));
+  const vtkIdType stripMerged = hierarchy->Select(camera, 0.75, items);
+  std::vector<int> drawn(m, 0);
+  vtkIdType surfels = 0;
+  for (const std::uint32_t item : items)
+  {
+    if (item < m)
+    {
+      ++drawn[item];
+      ++surfels;
+    }
+  }
+  std::printf("strip of %zu surfels: %lld drawn merged, %lld as they are, %zu splats\n", m,
+    static_cast<long long>(stripMerged), static_cast<long long>(surfels), items.size());
+  EXPECT_GT(stripMerged, 0);
+  EXPECT_GT(surfels, 0);
+  EXPECT_EQ(stripMerged + surfels, static_cast<vtkIdType>(m));
+  EXPECT_TRUE(std::all_of(drawn.begin(), drawn.end(), [](int d) { return d <= 1; }));
 }
 
 // Surfels without area or at one point get level 0 only; an empty set selects nothing.
