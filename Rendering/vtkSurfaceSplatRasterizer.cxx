@@ -2,6 +2,7 @@
 #include "vtkSurfaceSplatRasterizer.h"
 
 #include "SplatDifferentialPointNormal.h"
+#include "SplatMinifiedSurfel.h"
 #include "vtkSurfelHierarchy.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
@@ -139,21 +140,9 @@ struct vtkSurfaceSplatRasterizer::Fragment
   bool Shaded() const { return this->Weight < 0.0f; }
 };
 
-// A minified splat after setup: what the pixel holding its center sums. Its mass is the |J| its
-// resampling kernel integrates to (eq. 6).
-struct vtkSurfaceSplatRasterizer::MinifiedSplat
+// A minified splat after setup: what the pixel holding its center sums.
+struct vtkSurfaceSplatRasterizer::MinifiedSplat : splat::MinifiedSurfel
 {
-  float CenterX, CenterY;
-  // Eye depth of its tangent plane at its pixel's center, and how it changes per pixel: at
-  // grazing angles a pixel spans more depth than the z threshold.
-  float Depth;
-  float DepthSlope[2];
-  float Threshold;
-  float Mass;
-  float Spread; // the warped basis function's mean variance, pixels^2
-  float Normal[3];
-  float Color[3];
-  float Alpha;
 };
 
 // One surface's minified splats whose centers lie in one pixel: their weighted sums and, once
@@ -393,38 +382,6 @@ inline void Deposit(PixelCell* cells, std::uint8_t& count, int layers, const Min
   cell.InverseVariance += m.Mass * m.Spread;
 }
 
-// A minified splat from its eye-space center p and axes a0, a1, its projection and warped basis
-// variance, the pixel holding its center, its normal turned towards the viewer, its color and
-// the ratio of its mass to the area its axes span (1 but for merged nodes of a hierarchy).
-MinifiedSplat MakeMinifiedSplat(const glm::dvec3& p, const glm::dvec3& a0, const glm::dvec3& a1,
-  const splat::SurfelProjection& projection, const glm::dmat2& warped, const glm::dvec2& cell,
-  const glm::dvec3& normal, const float* color, double massScale, double depthThreshold)
-{
-  MinifiedSplat m;
-  m.CenterX = static_cast<float>(projection.Center.x);
-  m.CenterY = static_cast<float>(projection.Center.y);
-  // Along the axes the eye depth changes by -(a0.z, a1.z) per axis unit, and the pixel
-  // position by J.
-  const glm::dmat2& J = projection.Jacobian;
-  const double det = glm::determinant(J);
-  const glm::dvec2 slope =
-    glm::dvec2(a1.z * J[0][1] - a0.z * J[1][1], a0.z * J[1][0] - a1.z * J[0][0]) / det;
-  m.Depth = static_cast<float>(-p.z + glm::dot(slope, cell + 0.5 - projection.Center));
-  m.DepthSlope[0] = static_cast<float>(slope.x);
-  m.DepthSlope[1] = static_cast<float>(slope.y);
-  m.Threshold = static_cast<float>(
-    depthThreshold * std::sqrt(std::max(glm::dot(a0, a0), glm::dot(a1, a1))));
-  m.Mass = static_cast<float>(massScale * std::abs(det));
-  m.Spread = static_cast<float>(0.5 * (warped[0][0] + warped[1][1]));
-  for (int c = 0; c < 3; ++c)
-  {
-    m.Normal[c] = static_cast<float>(normal[c]);
-    m.Color[c] = color[c];
-  }
-  m.Alpha = 1.0f;
-  return m;
-}
-
 // exp(-beta) for beta in [0, cutoff], tabulated once per frame and linearly interpolated: the
 // paper's lookup table, within 2e-6 of std::exp for the default cutoff.
 class NegativeExponential
@@ -651,12 +608,29 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   reasons.resize(count);
   const glm::dmat3 axisToEye(modelToEye);
   const glm::dvec3 eyeTranslation(modelToEye[3]);
+  splat::MinifiedSurfelProjector::Frame minifiedFrame;
+  minifiedFrame.ModelToEye = modelToEye;
+  minifiedFrame.EyeToClip = eyeToClip;
+  minifiedFrame.Viewport = viewport;
+  minifiedFrame.NearDepth = nearDepth;
+  minifiedFrame.FarDepth = farDepth;
+  minifiedFrame.DepthReach = depthReach;
+  minifiedFrame.MaximumVariance = this->MinifiedVariance;
+  minifiedFrame.DepthThreshold = depthThreshold;
+  minifiedFrame.Reach = reach;
+  minifiedFrame.Perspective = rays.Perspective;
+  minifiedFrame.CullBackFaces = cullBackFaces;
+  const splat::MinifiedSurfelProjector minifiedProjector(minifiedFrame);
   // Steps 1 and 2 for splats [first, last).
   auto drawRange = [&](vtkIdType first, vtkIdType last)
   {
     // 1. Setup, in eye space, chunk by chunk.
     const vtkIdType chunks = (last - first + ChunkSize - 1) / ChunkSize;
-    minified.resize(minify ? chunks * cellBands : 0);
+    // Grown, never shrunk: the lists keep their capacity from frame to frame.
+    if (minify && minified.size() < static_cast<std::size_t>(chunks * cellBands))
+    {
+      minified.resize(chunks * cellBands);
+    }
     vtkSMPTools::For(0, chunks, 1,
       [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
       {
@@ -666,20 +640,81 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         {
           minified[c].clear();
         }
-        for (vtkIdType k = begin; k < end; ++k)
+        // Splat k: surfel i of the input or merged node i of the hierarchy, and the ratio of
+        // its mass to the area its axes span (1 but for merged nodes).
+        struct Source
         {
+          const Surfels* Data;
+          std::size_t Index;
+          double MassScale;
+        };
+        auto sourceOf = [&](vtkIdType k)
+        {
+          const std::size_t item = hierarchy ? items[k] : static_cast<std::size_t>(k);
+          return item < surfels.Count
+            ? Source{ &surfels, item, 1.0 }
+            : Source{ &merged, item - surfels.Count,
+                hierarchy->GetMassScales()[item - surfels.Count] };
+        };
+        splat::MinifiedSurfelProjector::Batch batch;
+        for (vtkIdType batchBegin = begin; batchBegin < end;
+             batchBegin += splat::MinifiedSurfelProjector::BatchSize)
+        {
+          const int batchCount = static_cast<int>(std::min<vtkIdType>(
+            splat::MinifiedSurfelProjector::BatchSize, end - batchBegin));
+          for (int j = 0; minify && j < batchCount; ++j)
+          {
+            const Source at = sourceOf(batchBegin + j);
+            const std::size_t i = at.Index;
+            minifiedProjector.Load(batch, j, at.Data->Positions + 3 * i,
+              at.Data->Normals + 3 * i, at.Data->Axes0 + 3 * i, at.Data->Axes1 + 3 * i,
+              static_cast<float>(at.MassScale));
+          }
+          if (minify)
+          {
+            minifiedProjector.Project(batch, batchCount);
+          }
+        for (int j = 0; j < batchCount; ++j)
+        {
+          const vtkIdType k = batchBegin + j;
           std::uint8_t& reason = reasons[k];
           reason = OutsideFrustum;
-          // Splat k: surfel i, or merged node i of the hierarchy.
-          const std::size_t item = hierarchy ? items[k] : static_cast<std::size_t>(k);
-          const bool node = item >= surfels.Count;
-          const Surfels& source = node ? merged : surfels;
-          const std::size_t i = node ? item - surfels.Count : item;
-          const double massScale = node ? hierarchy->GetMassScales()[i] : 1.0;
+          const Source at = sourceOf(k);
+          const Surfels& source = *at.Data;
+          const std::size_t i = at.Index;
+          const double massScale = at.MassScale;
           const double* position = source.Positions + 3 * i;
           const float* n = source.Normals + 3 * i;
           const float* axis0 = source.Axes0 + 3 * i;
           const float* axis1 = source.Axes1 + 3 * i;
+          if (minify)
+          {
+            MinifiedSplat m;
+            switch (batch.Outcome[j])
+            {
+              case splat::MinifiedSurfelProjector::Minified:
+                if (minifiedProjector.Fill(batch, j, m))
+                {
+                  std::copy(source.Colors + 3 * i, source.Colors + 3 * i + 3, m.Color);
+                  m.Alpha = 1.0f;
+                  const int band =
+                    (static_cast<int>(std::floor(m.CenterY)) + reach) / BandHeight;
+                  minified[((k - first) / ChunkSize) * cellBands + band].push_back(m);
+                  reason = Minified;
+                }
+                continue;
+              case splat::MinifiedSurfelProjector::FacingAway:
+                reason = BackFacing;
+                continue;
+              case splat::MinifiedSurfelProjector::EdgeOn:
+                reason = Negligible;
+                continue;
+              case splat::MinifiedSurfelProjector::Magnified:
+                break;
+              default:
+                continue;
+            }
+          }
           const glm::dvec3 p =
             axisToEye * glm::dvec3(position[0], position[1], position[2]) + eyeTranslation;
           const glm::dvec3 a0 = axisToEye * glm::dvec3(axis0[0], axis0[1], axis0[2]);
@@ -708,23 +743,6 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           if (!(splat::Foreshortening(projection) >= splat::EdgeOnForeshortening))
           {
             reason = Negligible;
-            continue;
-          }
-          const glm::dmat2 warped =
-            minify ? splat::WarpedBasisVariance(projection) : glm::dmat2(0.0);
-          if (minify && splat::LargestEigenvalue(warped) <= this->MinifiedVariance)
-          {
-            // Below a pixel, it is drawn whole where its center is in the depth range, or not.
-            const glm::dvec2 cell = glm::floor(projection.Center);
-            if (-p.z >= nearDepth && -p.z <= farDepth && cell.x >= -reach &&
-              cell.x < width + reach && cell.y >= -reach && cell.y < height + reach)
-            {
-              const int band = (static_cast<int>(cell.y) + reach) / BandHeight;
-              minified[((k - first) / ChunkSize) * cellBands + band].push_back(
-                MakeMinifiedSplat(p, a0, a1, projection, warped, cell, backFacing ? -normal : normal,
-                  source.Colors + 3 * i, massScale, depthThreshold));
-              reason = Minified;
-            }
             continue;
           }
           const splat::ResamplingKernel kernel =
@@ -780,6 +798,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
               axis0[2])), glm::length(glm::dvec3(axis1[0], axis1[1], axis1[2])),
               source.Curvatures + 2 * i, backFacing, differentials[k]);
           }
+        }
         }
       });
 
@@ -1088,7 +1107,10 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
 {
   // Each pixel gathers its neighbors' cells into its own fragments, one contribution per cell:
   // the low-pass filter widened by the cell's spread, the Gaussian of variance v = 1 + spread,
-  // e^-beta / (2 pi v), at the offset to its mean center within the cutoff.
+  // e^-beta / (2 pi v), at the offset to its mean center within the cutoff. The nearest surface
+  // of every cell comes first; the cells' farther surfaces are then left out where they fall
+  // behind a fully covered opaque front fragment, through which nothing shows (the test
+  // RegionHidden makes), which on a closed surface is most of its back.
   const Internals::CellGrid& grid = this->Internal->Grid;
   const std::vector<PixelCell>& cells = this->Internal->Cells;
   const std::vector<std::uint8_t>& cellCounts = this->Internal->CellCounts;
@@ -1098,6 +1120,7 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
   const int layers = this->Layers;
   const int reach = grid.Reach;
   const float cutoff = static_cast<float>(this->Cutoff);
+  const float full = this->CurrentFrame.FullCoverage;
   const NegativeExponential exponential(cutoff);
   const int bands = (height + BandHeight - 1) / BandHeight;
   std::vector<vtkIdType> gathered(bands, 0);
@@ -1123,41 +1146,56 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
           const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
           Fragment* pixelFragments = &this->Fragments[pixel * layers];
           std::uint8_t& count = this->FragmentCounts[pixel];
-          for (int dy = -reach; dy <= reach; ++dy)
+          // The cells' nearest surfaces, then (pass 1) their farther ones.
+          bool deeper = false;
+          for (int pass = 0; pass < 2 && (pass == 0 || deeper); ++pass)
           {
-            const std::size_t row = static_cast<std::size_t>(y + dy + reach) * grid.Width;
-            for (int dx = -reach; dx <= reach; ++dx)
+            for (int dy = -reach; dy <= reach; ++dy)
             {
-              const std::size_t cell = row + (x + dx + reach);
-              for (int j = 0; j < cellCounts[cell]; ++j)
+              const std::size_t row = static_cast<std::size_t>(y + dy + reach) * grid.Width;
+              for (int dx = -reach; dx <= reach; ++dx)
               {
-                const PixelCell& c = cells[cell * layers + j];
-                const float ox = dx + c.Offset[0];
-                const float oy = dy + c.Offset[1];
-                const float beta = 0.5f * (ox * ox + oy * oy) * c.InverseVariance;
-                // The cell's plane at this pixel's center, dx, dy pixels from its own.
-                const float z = c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1];
-                if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]))
+                const std::size_t cell = row + (x + dx + reach);
+                deeper = deeper || cellCounts[cell] > 1;
+                for (int j = pass; j < (pass == 0 ? std::min<int>(cellCounts[cell], 1)
+                                                  : cellCounts[cell]);
+                     ++j)
                 {
-                  continue;
+                  const PixelCell& c = cells[cell * layers + j];
+                  // The cell's plane at this pixel's center, dx, dy pixels from its own.
+                  const float z = c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1];
+                  const Fragment& front = pixelFragments[0];
+                  if (pass > 0 && count > 0 && front.Weight >= full &&
+                    front.Alpha >= OpaqueAlpha * front.Weight && z > front.Depth + c.Threshold)
+                  {
+                    continue;
+                  }
+                  const float ox = dx + c.Offset[0];
+                  const float oy = dy + c.Offset[1];
+                  const float beta = 0.5f * (ox * ox + oy * oy) * c.InverseVariance;
+                  if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]))
+                  {
+                    continue;
+                  }
+                  bool inserted;
+                  const int i =
+                    OpaqueSlot(pixelFragments, count, layers, z, c.Threshold, inserted);
+                  if (i < 0)
+                  {
+                    continue;
+                  }
+                  const float w = static_cast<float>(splat::InverseTwoPi) * exponential(beta) *
+                    c.InverseVariance;
+                  if (inserted)
+                  {
+                    pixelFragments[i] = Scaled(c.Sum, w, z);
+                  }
+                  else
+                  {
+                    AccumulateScaled(pixelFragments[i], c.Sum, w, z);
+                  }
+                  ++written;
                 }
-                bool inserted;
-                const int i = OpaqueSlot(pixelFragments, count, layers, z, c.Threshold, inserted);
-                if (i < 0)
-                {
-                  continue;
-                }
-                const float w = static_cast<float>(splat::InverseTwoPi) * exponential(beta) *
-                  c.InverseVariance;
-                if (inserted)
-                {
-                  pixelFragments[i] = Scaled(c.Sum, w, z);
-                }
-                else
-                {
-                  AccumulateScaled(pixelFragments[i], c.Sum, w, z);
-                }
-                ++written;
               }
             }
           }
