@@ -24,6 +24,13 @@
 namespace splat
 {
 
+/// floor(x) for |x| < 2^31, without a call or a rounding-mode change.
+inline int FloorToInt(float x)
+{
+  const int truncated = static_cast<int>(x);
+  return truncated - (x < static_cast<float>(truncated));
+}
+
 /**
  * What the pixel holding a minified splat's center sums of it (its mass is the |J| its
  * resampling kernel integrates to, eq. 6).
@@ -239,14 +246,17 @@ public:
    */
   bool Fill(const Batch& batch, int j, MinifiedSurfel& out) const
   {
+    // Compared before they are floored (the bounds are whole numbers), which keeps the
+    // conversions in range.
     const float depth = -batch.PZ[j];
-    const float cellX = std::floor(batch.CenterX[j]);
-    const float cellY = std::floor(batch.CenterY[j]);
-    if (!(depth >= this->NearDepth && depth <= this->FarDepth && cellX >= this->Low &&
-          cellX < this->High.x && cellY >= this->Low && cellY < this->High.y))
+    if (!(depth >= this->NearDepth && depth <= this->FarDepth &&
+          batch.CenterX[j] >= this->Low && batch.CenterX[j] < this->High.x &&
+          batch.CenterY[j] >= this->Low && batch.CenterY[j] < this->High.y))
     {
       return false;
     }
+    const float cellX = static_cast<float>(FloorToInt(batch.CenterX[j]));
+    const float cellY = static_cast<float>(FloorToInt(batch.CenterY[j]));
     out.CenterX = batch.CenterX[j];
     out.CenterY = batch.CenterY[j];
     out.Depth = depth + batch.SlopeX[j] * (cellX + 0.5f - out.CenterX) +

@@ -698,7 +698,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                   std::copy(source.Colors + 3 * i, source.Colors + 3 * i + 3, m.Color);
                   m.Alpha = 1.0f;
                   const int band =
-                    (static_cast<int>(std::floor(m.CenterY)) + reach) / BandHeight;
+                    (splat::FloorToInt(m.CenterY) + reach) / BandHeight;
                   minified[((k - first) / ChunkSize) * cellBands + band].push_back(m);
                   reason = Minified;
                 }
@@ -1075,8 +1075,8 @@ void vtkSurfaceSplatRasterizer::SumMinifiedSplats(vtkIdType chunks)
         {
           for (const MinifiedSplat& m : minified[chunk * grid.Bands + b])
           {
-            const int x = static_cast<int>(std::floor(m.CenterX));
-            const int y = static_cast<int>(std::floor(m.CenterY));
+            const int x = splat::FloorToInt(m.CenterX);
+            const int y = splat::FloorToInt(m.CenterY);
             glm::ivec2& span = spans[y + grid.Reach];
             span = glm::ivec2(std::min(span.x, x + grid.Reach), std::max(span.y, x + grid.Reach));
             const std::size_t cell =
@@ -1146,55 +1146,77 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
           const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
           Fragment* pixelFragments = &this->Fragments[pixel * layers];
           std::uint8_t& count = this->FragmentCounts[pixel];
-          // The cells' nearest surfaces, then (pass 1) their farther ones.
-          bool deeper = false;
-          for (int pass = 0; pass < 2 && (pass == 0 || deeper); ++pass)
+          // One cell's surface, dx, dy pixels away, at depth z.
+          auto add = [&](const PixelCell& c, int dx, int dy, float z)
           {
-            for (int dy = -reach; dy <= reach; ++dy)
+            const float ox = dx + c.Offset[0];
+            const float oy = dy + c.Offset[1];
+            const float beta = 0.5f * (ox * ox + oy * oy) * c.InverseVariance;
+            if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]))
             {
-              const std::size_t row = static_cast<std::size_t>(y + dy + reach) * grid.Width;
-              for (int dx = -reach; dx <= reach; ++dx)
+              return;
+            }
+            bool inserted;
+            const int i = OpaqueSlot(pixelFragments, count, layers, z, c.Threshold, inserted);
+            if (i < 0)
+            {
+              return;
+            }
+            const float w =
+              static_cast<float>(splat::InverseTwoPi) * exponential(beta) * c.InverseVariance;
+            if (inserted)
+            {
+              pixelFragments[i] = Scaled(c.Sum, w, z);
+            }
+            else
+            {
+              AccumulateScaled(pixelFragments[i], c.Sum, w, z);
+            }
+            ++written;
+          };
+          // The cell's plane at this pixel's center, dx, dy pixels from its own.
+          auto depthAt = [](const PixelCell& c, int dx, int dy)
+          { return c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1]; };
+          // The cells' nearest surfaces first.
+          bool deeper = false;
+          for (int dy = -reach; dy <= reach; ++dy)
+          {
+            const std::size_t row = static_cast<std::size_t>(y + dy + reach) * grid.Width;
+            for (int dx = -reach; dx <= reach; ++dx)
+            {
+              const std::size_t cell = row + (x + dx + reach);
+              if (cellCounts[cell] > 0)
               {
-                const std::size_t cell = row + (x + dx + reach);
                 deeper = deeper || cellCounts[cell] > 1;
-                for (int j = pass; j < (pass == 0 ? std::min<int>(cellCounts[cell], 1)
-                                                  : cellCounts[cell]);
-                     ++j)
+                const PixelCell& c = cells[cell * layers];
+                add(c, dx, dy, depthAt(c, dx, dy));
+              }
+            }
+          }
+          if (!deeper)
+          {
+            continue;
+          }
+          // Then their farther ones, but those behind a fully covered opaque front (whose
+          // depth can only decrease as the pixel gathers more).
+          const Fragment& front = pixelFragments[0];
+          const float hiding = count > 0 && front.Weight >= full &&
+              front.Alpha >= OpaqueAlpha * front.Weight
+            ? front.Depth
+            : std::numeric_limits<float>::infinity();
+          for (int dy = -reach; dy <= reach; ++dy)
+          {
+            const std::size_t row = static_cast<std::size_t>(y + dy + reach) * grid.Width;
+            for (int dx = -reach; dx <= reach; ++dx)
+            {
+              const std::size_t cell = row + (x + dx + reach);
+              for (int j = 1; j < cellCounts[cell]; ++j)
+              {
+                const PixelCell& c = cells[cell * layers + j];
+                const float z = depthAt(c, dx, dy);
+                if (!(z > hiding + c.Threshold))
                 {
-                  const PixelCell& c = cells[cell * layers + j];
-                  // The cell's plane at this pixel's center, dx, dy pixels from its own.
-                  const float z = c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1];
-                  const Fragment& front = pixelFragments[0];
-                  if (pass > 0 && count > 0 && front.Weight >= full &&
-                    front.Alpha >= OpaqueAlpha * front.Weight && z > front.Depth + c.Threshold)
-                  {
-                    continue;
-                  }
-                  const float ox = dx + c.Offset[0];
-                  const float oy = dy + c.Offset[1];
-                  const float beta = 0.5f * (ox * ox + oy * oy) * c.InverseVariance;
-                  if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]))
-                  {
-                    continue;
-                  }
-                  bool inserted;
-                  const int i =
-                    OpaqueSlot(pixelFragments, count, layers, z, c.Threshold, inserted);
-                  if (i < 0)
-                  {
-                    continue;
-                  }
-                  const float w = static_cast<float>(splat::InverseTwoPi) * exponential(beta) *
-                    c.InverseVariance;
-                  if (inserted)
-                  {
-                    pixelFragments[i] = Scaled(c.Sum, w, z);
-                  }
-                  else
-                  {
-                    AccumulateScaled(pixelFragments[i], c.Sum, w, z);
-                  }
-                  ++written;
+                  add(c, dx, dy, z);
                 }
               }
             }
