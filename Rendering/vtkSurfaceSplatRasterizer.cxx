@@ -185,6 +185,9 @@ struct vtkSurfaceSplatRasterizer::Internals
   // Per pixel of the viewport padded by the gather's reach, its cells, front to back.
   std::vector<PixelCell> Cells;
   std::vector<std::uint8_t> CellCounts;
+  // Per cell, a bound below which none of its farther surfaces reaches a pixel it is gathered
+  // into: the smallest depth minus z threshold over its reach (infinite with one surface).
+  std::vector<float> CellDeeperDepths;
   // Per row of cells, the first and last that hold any (EmptySpan for none): the gather skips
   // the pixels no cell reaches.
   std::vector<glm::ivec2> CellSpans;
@@ -1057,6 +1060,8 @@ void vtkSurfaceSplatRasterizer::SumMinifiedSplats(vtkIdType chunks)
   const int layers = this->Layers;
   cells.resize(static_cast<std::size_t>(grid.Width) * grid.Height * layers);
   cellCounts.resize(static_cast<std::size_t>(grid.Width) * grid.Height);
+  std::vector<float>& deeperDepths = this->Internal->CellDeeperDepths;
+  deeperDepths.resize(cellCounts.size());
   std::vector<glm::ivec2>& spans = this->Internal->CellSpans;
   spans.resize(grid.Height);
   vtkSMPTools::For(0, grid.Bands, 1,
@@ -1088,6 +1093,7 @@ void vtkSurfaceSplatRasterizer::SumMinifiedSplats(vtkIdType chunks)
       }
       for (std::size_t cell = first; cell < last; ++cell)
       {
+        float deeper = std::numeric_limits<float>::infinity();
         for (int j = 0; j < cellCounts[cell]; ++j)
         {
           PixelCell& c = cells[cell * layers + j];
@@ -1097,7 +1103,14 @@ void vtkSurfaceSplatRasterizer::SumMinifiedSplats(vtkIdType chunks)
             c.DepthSlope[k] /= c.Sum.Weight;
           }
           c.InverseVariance = 1.0f / (1.0f + c.InverseVariance / c.Sum.Weight);
+          if (j > 0)
+          {
+            deeper = std::min(deeper, c.Sum.Depth -
+                grid.Reach * (std::abs(c.DepthSlope[0]) + std::abs(c.DepthSlope[1])) -
+                c.Threshold);
+          }
         }
+        deeperDepths[cell] = deeper;
       }
     });
 }
@@ -1114,6 +1127,7 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
   const Internals::CellGrid& grid = this->Internal->Grid;
   const std::vector<PixelCell>& cells = this->Internal->Cells;
   const std::vector<std::uint8_t>& cellCounts = this->Internal->CellCounts;
+  const std::vector<float>& deeperDepths = this->Internal->CellDeeperDepths;
   const std::vector<glm::ivec2>& spans = this->Internal->CellSpans;
   const int width = this->CurrentFrame.View.Viewport.x;
   const int height = this->CurrentFrame.View.Viewport.y;
@@ -1178,7 +1192,7 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
           auto depthAt = [](const PixelCell& c, int dx, int dy)
           { return c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1]; };
           // The cells' nearest surfaces first.
-          bool deeper = false;
+          float deeper = std::numeric_limits<float>::infinity();
           for (int dy = -reach; dy <= reach; ++dy)
           {
             const std::size_t row = static_cast<std::size_t>(y + dy + reach) * grid.Width;
@@ -1187,15 +1201,11 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
               const std::size_t cell = row + (x + dx + reach);
               if (cellCounts[cell] > 0)
               {
-                deeper = deeper || cellCounts[cell] > 1;
+                deeper = std::min(deeper, deeperDepths[cell]);
                 const PixelCell& c = cells[cell * layers];
                 add(c, dx, dy, depthAt(c, dx, dy));
               }
             }
-          }
-          if (!deeper)
-          {
-            continue;
           }
           // Then their farther ones, but those behind a fully covered opaque front (whose
           // depth can only decrease as the pixel gathers more).
@@ -1204,13 +1214,17 @@ vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDept
               front.Alpha >= OpaqueAlpha * front.Weight
             ? front.Depth
             : std::numeric_limits<float>::infinity();
+          if (!(deeper <= hiding))
+          {
+            continue;
+          }
           for (int dy = -reach; dy <= reach; ++dy)
           {
             const std::size_t row = static_cast<std::size_t>(y + dy + reach) * grid.Width;
             for (int dx = -reach; dx <= reach; ++dx)
             {
               const std::size_t cell = row + (x + dx + reach);
-              for (int j = 1; j < cellCounts[cell]; ++j)
+              for (int j = 1; j < cellCounts[cell] && deeperDepths[cell] <= hiding; ++j)
               {
                 const PixelCell& c = cells[cell * layers + j];
                 const float z = depthAt(c, dx, dy);
@@ -1336,8 +1350,9 @@ void vtkSurfaceSplatRasterizer::Resolve()
           std::uint8_t* rgba = &this->Colors[4 * pixel];
           for (int c = 0; c < 4; ++c)
           {
+            // Rounded to nearest: the value is not negative.
             rgba[c] = static_cast<std::uint8_t>(
-              std::lround(255.0f * std::min(std::max(result[c], 0.0f), 1.0f)));
+              255.0f * std::min(std::max(result[c], 0.0f), 1.0f) + 0.5f);
           }
           const double zEye = -static_cast<double>(fragments[0].Depth);
           const double zNdc = (P[2][2] * zEye + P[3][2]) / (P[2][3] * zEye + P[3][3]);

@@ -513,7 +513,6 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
     return axis + block.ConeAngle + subtended < 0.5 * vtkMath::Pi() - 1e-3;
   };
 
-  std::vector<std::vector<std::uint32_t>> blockItems(blockCount);
   std::vector<int> chosen(blockCount);
   std::vector<char> away(blockCount);
   std::vector<vtkIdType> merged(blockCount, 0);
@@ -555,54 +554,59 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
     }
     return 0;
   }
+  // A block emits at most one item per surfel: block b's items are written from blocks[b] on,
+  // counted, then moved into order.
+  items.resize(this->SurfelCount);
+  std::vector<std::uint32_t> emitted(blockCount, 0);
   vtkSMPTools::For(0, blockCount,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType b = begin; b < end; ++b)
       {
+        std::uint32_t* out = items.data() + blocks[b];
         visit(b, chosen[b],
           [&](std::uint32_t item, std::uint32_t surfels)
           {
-            blockItems[b].push_back(item);
+            out[emitted[b]++] = item;
             merged[b] += surfels;
           });
       }
     });
-  // The blocks that may face the eye first, then those facing away, each in block order.
-  std::vector<vtkIdType> order;
-  for (const char facing : { 0, 1 })
+  // The blocks that may face the eye first, then those facing away, each in block order: the
+  // first move only towards the front, in place; the others are set aside first.
+  std::vector<std::uint32_t> awayItems;
+  for (vtkIdType b = 0; b < blockCount; ++b)
   {
-    for (vtkIdType b = 0; b < blockCount; ++b)
+    if (away[b])
     {
-      if (away[b] == facing)
-      {
-        order.push_back(b);
-      }
+      awayItems.insert(awayItems.end(), items.begin() + blocks[b],
+        items.begin() + blocks[b] + emitted[b]);
     }
   }
-  std::vector<std::size_t> offsets(blockCount, 0);
   std::size_t total = 0;
   vtkIdType represented = 0;
-  for (const vtkIdType b : order)
+  for (vtkIdType b = 0; b < blockCount; ++b)
   {
-    offsets[b] = total;
-    total += blockItems[b].size();
-    represented += merged[b];
+    if (!away[b])
+    {
+      std::copy(items.begin() + blocks[b], items.begin() + blocks[b] + emitted[b],
+        items.begin() + total);
+      total += emitted[b];
+      represented += merged[b];
+    }
+  }
+  std::copy(awayItems.begin(), awayItems.end(), items.begin() + total);
+  for (vtkIdType b = 0; b < blockCount; ++b)
+  {
     if (away[b])
     {
       const Block& block = this->Blocks[b];
-      backRegions->push_back({ offsets[b], total, block.Low, block.High, block.Reach });
+      backRegions->push_back({ total, total + emitted[b], block.Low, block.High, block.Reach });
+      total += emitted[b];
+      represented += merged[b];
     }
   }
   items.resize(total);
-  vtkSMPTools::For(0, blockCount,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType b = begin; b < end; ++b)
-      {
-        std::copy(blockItems[b].begin(), blockItems[b].end(), items.begin() + offsets[b]);
-      }
-    });
   return represented;
 }
 
