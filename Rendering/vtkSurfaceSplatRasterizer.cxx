@@ -442,22 +442,16 @@ glm::vec4 vtkSurfaceSplatRasterizer::ShadeFragment(const Fragment& f, int x, int
     return glm::vec4(f.Color[0], f.Color[1], f.Color[2], f.Alpha);
   }
   const Frame& frame = this->CurrentFrame;
-  // Eye position of the fragment: from the linear depth to NDC z, then unproject.
-  const glm::dmat4& P = frame.View.EyeToClip;
-  const double zEye = -static_cast<double>(f.Depth);
-  const double zNdc = (P[2][2] * zEye + P[3][2]) / (P[2][3] * zEye + P[3][3]);
-  const glm::dvec4 ndc(2.0 * (x + 0.5) / frame.View.Viewport.x - 1.0,
-    2.0 * (y + 0.5) / frame.View.Viewport.y - 1.0, zNdc, 1.0);
-  const glm::dvec4 eye = frame.ClipToEye * ndc;
-  const glm::vec3 position(glm::dvec3(eye) / eye.w);
+  // Eye position of the fragment: on its pixel's ray at its depth.
+  const glm::vec3 pixel(x + 0.5f, y + 0.5f, 1.0f);
+  const glm::vec3 position = frame.RayOrigin * pixel + f.Depth * (frame.RayDirection * pixel);
 
   glm::vec3 normal(f.Normal[0], f.Normal[1], f.Normal[2]);
   const float length = glm::length(normal);
   normal = length > 0.0f ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
   const glm::vec3 color = glm::vec3(f.Color[0], f.Color[1], f.Color[2]) / f.Weight;
   const glm::vec3 shaded = glm::clamp(
-    splat::Shade(*frame.Lights, *frame.Surface, color, position, normal,
-                   splat::IsParallelProjection(frame.View.EyeToClip)),
+    splat::Shade(*frame.Lights, *frame.Surface, color, position, normal, !frame.Perspective),
     0.0f, 1.0f);
   float alpha = f.Alpha / f.Weight;
   if (this->EdgeAntialiasing)
@@ -524,6 +518,9 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const glm::dmat3 normalToEye = glm::transpose(glm::inverse(glm::dmat3(modelToEye)));
   const glm::dvec2 viewport(width, height);
   const splat::PixelRays rays = splat::MakePixelRays(eyeToClip, viewport);
+  frame.RayOrigin = glm::mat3(rays.Origin);
+  frame.RayDirection = glm::mat3(rays.Direction);
+  frame.Perspective = rays.Perspective;
   // Depths of the near and far planes: the eye depths of NDC z = -1 and 1.
   auto eyeDepth = [&frame](double zNdc)
   {

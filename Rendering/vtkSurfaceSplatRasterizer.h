@@ -295,6 +295,11 @@ protected:
     const std::vector<splat::Light>* Lights = nullptr;
     const splat::Material* Surface = nullptr;
     float FullCoverage = 1.0f;
+    // A fragment's eye position at pixel p = (x, y, 1) and eye depth d: RayOrigin p + d
+    // RayDirection p (splat::PixelRays).
+    glm::mat3 RayOrigin{ 0.0f };
+    glm::mat3 RayDirection{ 0.0f };
+    bool Perspective = true;
   };
   Frame CurrentFrame;
   int Layers = 1; // fragments per pixel in this frame
