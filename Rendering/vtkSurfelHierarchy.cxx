@@ -429,10 +429,16 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
   const glm::dvec3 columns(glm::length(glm::dvec3(modelToEye[0])),
     glm::length(glm::dvec3(modelToEye[1])), glm::length(glm::dvec3(modelToEye[2])));
   const double scale = std::max({ columns.x, columns.y, columns.z });
-  // Normal cones keep their angles only without a non-uniform scale.
-  const bool cones = backRegions &&
+  // Normal cones keep their angles only without a non-uniform scale. Angles between normals
+  // and view vectors are then the same in model space, where the grazing test needs no
+  // transform: the view vector to a point is its offset from the eye, or the view direction.
+  const bool uniform =
     std::max({ columns.x, columns.y, columns.z }) - std::min({ columns.x, columns.y, columns.z }) <=
-      1e-9 * scale;
+    1e-9 * scale;
+  const bool cones = backRegions && uniform;
+  const glm::dmat4 eyeToModel = glm::inverse(modelToEye);
+  const glm::dvec3 eyeInModel(eyeToModel[3]);
+  const glm::dvec3 viewInModel(eyeToModel * glm::dvec4(0.0, 0.0, -1.0, 0.0));
   const glm::dmat4& P = camera.EyeToClip;
   const bool perspective = P[2][3] != 0.0;
   const double pixelsPerUnit =
@@ -463,14 +469,13 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
     for (std::size_t j = first; j < last; ++j)
     {
       const std::size_t node = offset + j;
-      const glm::dvec3 normal = normalToEye *
-        glm::dvec3(
-          this->Normals[3 * node], this->Normals[3 * node + 1], this->Normals[3 * node + 2]);
-      const glm::dvec3 view = perspective
-        ? glm::dvec3(modelToEye *
-            glm::dvec4(this->Positions[3 * node], this->Positions[3 * node + 1],
-              this->Positions[3 * node + 2], 1.0))
-        : glm::dvec3(0.0, 0.0, -1.0);
+      const glm::dvec3 n(
+        this->Normals[3 * node], this->Normals[3 * node + 1], this->Normals[3 * node + 2]);
+      const glm::dvec3 p(
+        this->Positions[3 * node], this->Positions[3 * node + 1], this->Positions[3 * node + 2]);
+      const glm::dvec3 normal = uniform ? n : normalToEye * n;
+      const glm::dvec3 view = uniform ? (perspective ? p - eyeInModel : viewInModel)
+        : (perspective ? glm::dvec3(modelToEye * glm::dvec4(p, 1.0)) : glm::dvec3(0.0, 0.0, -1.0));
       const double cosine = glm::dot(normal, view);
       if (cosine * cosine <
         GrazingCosine * GrazingCosine * glm::dot(normal, normal) * glm::dot(view, view))
