@@ -2,7 +2,9 @@
 #include "vtkSurfaceSplatRasterizer.h"
 
 #include "SplatDifferentialPointNormal.h"
+#include "SplatMinifiedSplatCells.h"
 #include "SplatMinifiedSurfel.h"
+#include "SplatSurfaceFragment.h"
 #include "vtkSurfelHierarchy.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
@@ -30,14 +32,8 @@ enum CullReason
 // Rows per band: small enough to balance the threads, large enough that few kernels straddle bands.
 constexpr int BandHeight = 16;
 
-// A row of cells that holds none.
-const glm::ivec2 EmptySpan(std::numeric_limits<int>::max(), std::numeric_limits<int>::min());
-
 // The share of the surfels that a hierarchy's selection must merge for the frame to draw it.
 constexpr double MinimumMergedShare = 0.25;
-
-// Accumulated alpha beyond which the fragments behind change no 8-bit color.
-constexpr float OpaqueAlpha = 1.0f - 1e-4f;
 
 // Surfels per setup chunk: the minified splats are listed chunk by chunk, so that every pixel
 // sums them in input order whatever the number of threads.
@@ -127,37 +123,6 @@ struct vtkSurfaceSplatRasterizer::DifferentialSplat
   }
 };
 
-// One surface's contributions to a pixel (paper 000, table 1). A merged fragment has been
-// shaded: its Weight is negative and Color holds the premultiplied shaded color.
-struct vtkSurfaceSplatRasterizer::Fragment
-{
-  float Depth; // linear eye depth of the nearest contribution
-  float Weight;
-  float Alpha; // weighted opacity, or the merged opacity once shaded
-  float Color[3];
-  float Normal[3];
-
-  bool Shaded() const { return this->Weight < 0.0f; }
-};
-
-// A minified splat after setup: what the pixel holding its center sums.
-struct vtkSurfaceSplatRasterizer::MinifiedSplat : splat::MinifiedSurfel
-{
-};
-
-// One surface's minified splats whose centers lie in one pixel: their weighted sums and, once
-// the pixel is complete, the weighted means of their centers relative to the pixel's center
-// and of their depth slopes, and the inverse of the gather's variance, 1 + their mean spread.
-// (While the pixel is summed, Offset, DepthSlope and InverseVariance hold mass-weighted sums.)
-struct vtkSurfaceSplatRasterizer::PixelCell
-{
-  Fragment Sum;
-  float Threshold;
-  float Offset[2];
-  float DepthSlope[2];
-  float InverseVariance;
-};
-
 struct vtkSurfaceSplatRasterizer::Internals
 {
   // Per splat, written only for those drawn with their exact kernel: left uninitialized, so
@@ -170,27 +135,7 @@ struct vtkSurfaceSplatRasterizer::Internals
   std::vector<DifferentialSplat> DifferentialSplats; // parallel to Splats; empty for surfels
   std::vector<vtkIdType> BandOffsets; // per band, into BandSplats
   std::vector<vtkIdType> BandSplats;  // splat indices, band by band, in input order
-  // The cells of the minified splats: a pixel gathers those within `Reach` cells, so the grid
-  // pads the viewport by as many on each side, in bands of BandHeight rows.
-  struct CellGrid
-  {
-    int Reach = 0;
-    int Width = 0;
-    int Height = 0;
-    int Bands = 0;
-  };
-  CellGrid Grid;
-  // Minified splats of chunk c whose center lies in cell band b: MinifiedSplats[c * bands + b].
-  std::vector<std::vector<MinifiedSplat>> MinifiedSplats;
-  // Per pixel of the viewport padded by the gather's reach, its cells, front to back.
-  std::vector<PixelCell> Cells;
-  std::vector<std::uint8_t> CellCounts;
-  // Per cell, a bound below which none of its farther surfaces reaches a pixel it is gathered
-  // into: the smallest depth minus z threshold over its reach (infinite with one surface).
-  std::vector<float> CellDeeperDepths;
-  // Per row of cells, the first and last that hold any (EmptySpan for none): the gather skips
-  // the pixels no cell reaches.
-  std::vector<glm::ivec2> CellSpans;
+  splat::MinifiedSplatCells MinifiedCells;
 };
 
 namespace
@@ -198,8 +143,6 @@ namespace
 using Fragment = vtkSurfaceSplatRasterizer::Fragment;
 using ScreenSplat = vtkSurfaceSplatRasterizer::ScreenSplat;
 using DifferentialSplat = vtkSurfaceSplatRasterizer::DifferentialSplat;
-using MinifiedSplat = vtkSurfaceSplatRasterizer::MinifiedSplat;
-using PixelCell = vtkSurfaceSplatRasterizer::PixelCell;
 
 // A differential point's per-pixel terms, in eye space: p its center, a0 and a1 its axes (the
 // principal directions scaled by the half-widths extentU, extentV in model units), curvatures
@@ -237,180 +180,27 @@ void SetUpDifferentialSplat(const splat::PixelRays& rays, const glm::dvec3& p,
   d.CurvatureV = curvatures[1];
 }
 
-// Contributions carry their own normal: a differential point's varies from pixel to pixel.
-inline void Accumulate(
-  Fragment& f, float z, float w, const float* normal, const float* color, float alpha)
-{
-  f.Depth = std::min(f.Depth, z);
-  f.Weight += w;
-  f.Alpha += w * alpha;
-  f.Color[0] += w * color[0];
-  f.Color[1] += w * color[1];
-  f.Color[2] += w * color[2];
-  f.Normal[0] += w * normal[0];
-  f.Normal[1] += w * normal[1];
-  f.Normal[2] += w * normal[2];
-}
-
-Fragment NewFragment(float z, float w, const float* normal, const float* color, float alpha)
-{
-  Fragment f;
-  f.Depth = z;
-  f.Weight = w;
-  f.Alpha = w * alpha;
-  for (int c = 0; c < 3; ++c)
-  {
-    f.Color[c] = w * color[c];
-    f.Normal[c] = w * normal[c];
-  }
-  return f;
-}
-
-// Sums of contributions at depth z, each weighted w times as much.
-inline void AccumulateScaled(Fragment& f, const Fragment& sums, float w, float z)
-{
-  f.Depth = std::min(f.Depth, z);
-  f.Weight += w * sums.Weight;
-  f.Alpha += w * sums.Alpha;
-  for (int c = 0; c < 3; ++c)
-  {
-    f.Color[c] += w * sums.Color[c];
-    f.Normal[c] += w * sums.Normal[c];
-  }
-}
-
-inline Fragment Scaled(const Fragment& sums, float w, float z)
-{
-  Fragment f = sums;
-  f.Depth = z;
-  f.Weight *= w;
-  f.Alpha *= w;
-  for (int c = 0; c < 3; ++c)
-  {
-    f.Color[c] *= w;
-    f.Normal[c] *= w;
-  }
-  return f;
-}
-
-inline float DepthOf(const Fragment& f)
-{
-  return f.Depth;
-}
-
-inline float DepthOf(const PixelCell& c)
-{
-  return c.Sum.Depth;
-}
-
-// Where an opaque contribution at eye depth z goes among a pixel's `count` items (fragments or
-// cells), sorted front to back: the index of the surface within the z threshold, or, with
-// `inserted` set, of a new surface shifted into place for the caller to fill; -1 when it falls
-// behind the last of `layers` items and is hidden.
-template <typename Item>
-inline int OpaqueSlot(
-  Item* items, std::uint8_t& count, int layers, float z, float threshold, bool& inserted)
-{
-  int i = 0;
-  while (i < count && z > DepthOf(items[i]) + threshold)
-  {
-    ++i;
-  }
-  inserted = !(i < count && z >= DepthOf(items[i]) - threshold);
-  if (!inserted)
-  {
-    return i;
-  }
-  if (i == layers)
-  {
-    return -1;
-  }
-  const int kept = std::min<int>(count, layers - 1);
-  for (int j = kept; j > i; --j)
-  {
-    items[j] = items[j - 1];
-  }
-  count = static_cast<std::uint8_t>(kept + 1);
-  return i;
-}
-
 // An opaque contribution to a pixel's fragments: it joins the surface within its z threshold,
 // or becomes a new surface; what falls behind the last of `layers` fragments is dropped.
 inline void AddOpaque(Fragment* fragments, std::uint8_t& count, int layers, float z, float w,
   const float* normal, const ScreenSplat& s)
 {
   bool inserted;
-  const int i = OpaqueSlot(fragments, count, layers, z, s.Threshold, inserted);
+  const int i = splat::OpaqueSlot(fragments, count, layers, z, s.Threshold, inserted);
   if (i < 0)
   {
     return;
   }
   if (inserted)
   {
-    fragments[i] = NewFragment(z, w, normal, s.Color, s.Alpha);
+    fragments[i] = splat::NewFragment(z, w, normal, s.Color, s.Alpha);
   }
   else
   {
-    Accumulate(fragments[i], z, w, normal, s.Color, s.Alpha);
+    splat::Accumulate(fragments[i], z, w, normal, s.Color, s.Alpha);
   }
 }
 
-// A minified splat into the cells of the pixel holding its center, as AddOpaque does for
-// fragments, with its offset from the pixel's center weighted by its mass.
-inline void Deposit(PixelCell* cells, std::uint8_t& count, int layers, const MinifiedSplat& m,
-  float offsetX, float offsetY)
-{
-  bool inserted;
-  const int i = OpaqueSlot(cells, count, layers, m.Depth, m.Threshold, inserted);
-  if (i < 0)
-  {
-    return;
-  }
-  PixelCell& cell = cells[i];
-  if (inserted)
-  {
-    cell.Sum = NewFragment(m.Depth, m.Mass, m.Normal, m.Color, m.Alpha);
-    cell.Threshold = m.Threshold;
-    cell.Offset[0] = cell.Offset[1] = cell.DepthSlope[0] = cell.DepthSlope[1] = 0.0f;
-    cell.InverseVariance = 0.0f;
-  }
-  else
-  {
-    Accumulate(cell.Sum, m.Depth, m.Mass, m.Normal, m.Color, m.Alpha);
-  }
-  cell.Offset[0] += m.Mass * offsetX;
-  cell.Offset[1] += m.Mass * offsetY;
-  cell.DepthSlope[0] += m.Mass * m.DepthSlope[0];
-  cell.DepthSlope[1] += m.Mass * m.DepthSlope[1];
-  cell.InverseVariance += m.Mass * m.Spread;
-}
-
-// exp(-beta) for beta in [0, cutoff], tabulated once per frame and linearly interpolated: the
-// paper's lookup table, within 2e-6 of std::exp for the default cutoff.
-class NegativeExponential
-{
-public:
-  explicit NegativeExponential(float cutoff)
-    : Scale(Size / cutoff)
-  {
-    for (int i = 0; i <= Size + 1; ++i)
-    {
-      this->Table[i] = std::exp(-static_cast<float>(i) / this->Scale);
-    }
-  }
-
-  float operator()(float beta) const
-  {
-    const float t = beta * this->Scale;
-    const int i = static_cast<int>(t);
-    return this->Table[i] + (t - i) * (this->Table[i + 1] - this->Table[i]);
-  }
-
-private:
-  static constexpr int Size = 1024;
-  float Scale;
-  float Table[Size + 2];
-};
 }
 
 //------------------------------------------------------------------------------
@@ -547,20 +337,12 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const double depthReach = footprintScale * std::max(std::sqrt(cutoff), 1.0);
 
   // Minified splats are summed per pixel where the exact kernel is the EWA one of an opaque
-  // surfel. A pixel gathers the cells within the cutoff's reach of its center for the widest
-  // spread, sqrt(2 c (1 + spread)) pixels: `reach` cells on each side, and as many outside the
-  // viewport. A cell one further would contribute only with its mean center well off its own
-  // center (a sparsely filled cell); it is left out, a truncation the tests bound.
+  // surfel (SplatMinifiedSplatCells.h).
   const bool minify = this->MinifiedVariance > 0.0 && filter == splat::KernelFilter::EWA &&
     !differential && !translucent;
-  Internals::CellGrid& grid = this->Internal->Grid;
-  grid.Reach =
-    static_cast<int>(std::floor(std::sqrt(2.0 * cutoff * (1.0 + this->MinifiedVariance))));
-  grid.Width = width + 2 * grid.Reach;
-  grid.Height = height + 2 * grid.Reach;
-  grid.Bands = (grid.Height + BandHeight - 1) / BandHeight;
-  const int reach = grid.Reach;
-  const int cellBands = grid.Bands;
+  splat::MinifiedSplatCells& minifiedCells = this->Internal->MinifiedCells;
+  minifiedCells.SetUp(width, height, this->Layers, cutoff, this->MinifiedVariance);
+  const int reach = minifiedCells.GetReach();
   // With a hierarchy of the surfels, the splats are the nodes it selects, whose coarser levels
   // are all minified.
   const vtkSurfelHierarchy* hierarchy = minify && surfels.Hierarchy &&
@@ -583,7 +365,6 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   }
   const Surfels merged = hierarchy ? hierarchy->GetMergedSurfels() : Surfels();
   const vtkIdType count = static_cast<vtkIdType>(hierarchy ? items.size() : surfels.Count);
-  std::vector<std::vector<MinifiedSplat>>& minified = this->Internal->MinifiedSplats;
   std::vector<DifferentialSplat>& differentials = this->Internal->DifferentialSplats;
   differentials.resize(differential ? count : 0);
 
@@ -596,7 +377,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
     : std::vector<float>();
   const float* sceneDepths = sceneEyeDepths.empty() ? nullptr : sceneEyeDepths.data();
   const int layers = this->Layers;
-  const NegativeExponential exponential(cutoffF);
+  const splat::ExponentialTable exponential(cutoffF);
 
   if (this->Internal->SplatCapacity < static_cast<std::size_t>(count))
   {
@@ -626,19 +407,18 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   {
     // 1. Setup, in eye space, chunk by chunk.
     const vtkIdType chunks = (last - first + ChunkSize - 1) / ChunkSize;
-    // Grown, never shrunk: the lists keep their capacity from frame to frame.
-    if (minify && minified.size() < static_cast<std::size_t>(chunks * cellBands))
+    if (minify)
     {
-      minified.resize(chunks * cellBands);
+      minifiedCells.ReserveChunks(chunks);
     }
     vtkSMPTools::For(0, chunks, 1,
       [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
       {
         const vtkIdType begin = first + chunkBegin * ChunkSize;
         const vtkIdType end = std::min(first + chunkEnd * ChunkSize, last);
-        for (vtkIdType c = chunkBegin * cellBands; minify && c < chunkEnd * cellBands; ++c)
+        for (vtkIdType c = chunkBegin; minify && c < chunkEnd; ++c)
         {
-          minified[c].clear();
+          minifiedCells.ClearChunk(c);
         }
         // Splat k: surfel i of the input or merged node i of the hierarchy, and the ratio of
         // its mass to the area its axes span (1 but for merged nodes).
@@ -689,7 +469,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           const float* axis1 = source.Axes1 + 3 * i;
           if (minify)
           {
-            MinifiedSplat m;
+            splat::MinifiedSurfel m;
             switch (batch.Outcome[j])
             {
               case splat::MinifiedSurfelProjector::Minified:
@@ -697,9 +477,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                 {
                   std::copy(source.Colors + 3 * i, source.Colors + 3 * i + 3, m.Color);
                   m.Alpha = 1.0f;
-                  const int band =
-                    (splat::FloorToInt(m.CenterY) + reach) / BandHeight;
-                  minified[((k - first) / ChunkSize) * cellBands + band].push_back(m);
+                  minifiedCells.List((k - first) / ChunkSize, m);
                   reason = Minified;
                 }
                 continue;
@@ -937,8 +715,9 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
     }
     if (minifiedInRange > 0)
     {
-      this->SumMinifiedSplats(chunks);
-      this->FragmentCount += this->GatherMinifiedSplats(sceneDepths);
+      minifiedCells.Sum(chunks);
+      this->FragmentCount += minifiedCells.Gather(this->Fragments.data(),
+        this->FragmentCounts.data(), cutoffF, frame.FullCoverage, sceneDepths);
     }
   };
 
@@ -1018,7 +797,7 @@ bool vtkSurfaceSplatRasterizer::RegionHidden(
   {
     return false;
   }
-  const double margin = this->Internal->Grid.Reach + 1.0;
+  const double margin = this->Internal->MinifiedCells.GetReach() + 1.0;
   const int x0 = static_cast<int>(std::max(std::floor(lo.x - margin), 0.0));
   const int y0 = static_cast<int>(std::max(std::floor(lo.y - margin), 0.0));
   const int x1 = static_cast<int>(std::min(std::ceil(hi.x + margin), viewport.x - 1.0));
@@ -1035,208 +814,13 @@ bool vtkSurfaceSplatRasterizer::RegionHidden(
       const std::size_t pixel = static_cast<std::size_t>(y) * view.Viewport.x + x;
       const Fragment& f = this->Fragments[pixel * this->Layers];
       if (this->FragmentCounts[pixel] == 0 || f.Shaded() || !(f.Weight >= full) ||
-        !(f.Alpha >= OpaqueAlpha * f.Weight) || !(f.Depth < farthest))
+        !(f.Alpha >= splat::OpaqueAlpha * f.Weight) || !(f.Depth < farthest))
       {
         return false;
       }
     }
   }
   return true;
-}
-
-//------------------------------------------------------------------------------
-void vtkSurfaceSplatRasterizer::SumMinifiedSplats(vtkIdType chunks)
-{
-  // Each cell band sums its splats chunk by chunk, in input order, into the cells of the pixels
-  // holding their centers, then turns the sums of offsets, slopes and spreads into what the
-  // gather reads.
-  const Internals::CellGrid& grid = this->Internal->Grid;
-  const std::vector<std::vector<MinifiedSplat>>& minified = this->Internal->MinifiedSplats;
-  std::vector<PixelCell>& cells = this->Internal->Cells;
-  std::vector<std::uint8_t>& cellCounts = this->Internal->CellCounts;
-  const int layers = this->Layers;
-  cells.resize(static_cast<std::size_t>(grid.Width) * grid.Height * layers);
-  cellCounts.resize(static_cast<std::size_t>(grid.Width) * grid.Height);
-  std::vector<float>& deeperDepths = this->Internal->CellDeeperDepths;
-  deeperDepths.resize(cellCounts.size());
-  std::vector<glm::ivec2>& spans = this->Internal->CellSpans;
-  spans.resize(grid.Height);
-  vtkSMPTools::For(0, grid.Bands, 1,
-    [&](vtkIdType bandBegin, vtkIdType bandEnd)
-    {
-      const std::size_t first = static_cast<std::size_t>(bandBegin) * BandHeight * grid.Width;
-      const std::size_t last = std::min(
-        static_cast<std::size_t>(bandEnd) * BandHeight * grid.Width, cellCounts.size());
-      std::fill(cellCounts.begin() + first, cellCounts.begin() + last, 0);
-      const int rowBegin = static_cast<int>(bandBegin) * BandHeight;
-      const int rowEnd = std::min(static_cast<int>(bandEnd) * BandHeight, grid.Height);
-      std::fill(spans.begin() + rowBegin, spans.begin() + rowEnd, EmptySpan);
-      for (vtkIdType b = bandBegin; b < bandEnd; ++b)
-      {
-        for (vtkIdType chunk = 0; chunk < chunks; ++chunk)
-        {
-          for (const MinifiedSplat& m : minified[chunk * grid.Bands + b])
-          {
-            const int x = splat::FloorToInt(m.CenterX);
-            const int y = splat::FloorToInt(m.CenterY);
-            glm::ivec2& span = spans[y + grid.Reach];
-            span = glm::ivec2(std::min(span.x, x + grid.Reach), std::max(span.y, x + grid.Reach));
-            const std::size_t cell =
-              static_cast<std::size_t>(y + grid.Reach) * grid.Width + (x + grid.Reach);
-            Deposit(&cells[cell * layers], cellCounts[cell], layers, m, m.CenterX - (x + 0.5f),
-              m.CenterY - (y + 0.5f));
-          }
-        }
-      }
-      for (std::size_t cell = first; cell < last; ++cell)
-      {
-        float deeper = std::numeric_limits<float>::infinity();
-        for (int j = 0; j < cellCounts[cell]; ++j)
-        {
-          PixelCell& c = cells[cell * layers + j];
-          for (int k = 0; k < 2; ++k)
-          {
-            c.Offset[k] /= c.Sum.Weight;
-            c.DepthSlope[k] /= c.Sum.Weight;
-          }
-          c.InverseVariance = 1.0f / (1.0f + c.InverseVariance / c.Sum.Weight);
-          if (j > 0)
-          {
-            deeper = std::min(deeper, c.Sum.Depth -
-                grid.Reach * (std::abs(c.DepthSlope[0]) + std::abs(c.DepthSlope[1])) -
-                c.Threshold);
-          }
-        }
-        deeperDepths[cell] = deeper;
-      }
-    });
-}
-
-//------------------------------------------------------------------------------
-vtkIdType vtkSurfaceSplatRasterizer::GatherMinifiedSplats(const float* sceneDepths)
-{
-  // Each pixel gathers its neighbors' cells into its own fragments, one contribution per cell:
-  // the low-pass filter widened by the cell's spread, the Gaussian of variance v = 1 + spread,
-  // e^-beta / (2 pi v), at the offset to its mean center within the cutoff. The nearest surface
-  // of every cell comes first; the cells' farther surfaces are then left out where they fall
-  // behind a fully covered opaque front fragment, through which nothing shows (the test
-  // RegionHidden makes), which on a closed surface is most of its back.
-  const Internals::CellGrid& grid = this->Internal->Grid;
-  const std::vector<PixelCell>& cells = this->Internal->Cells;
-  const std::vector<std::uint8_t>& cellCounts = this->Internal->CellCounts;
-  const std::vector<float>& deeperDepths = this->Internal->CellDeeperDepths;
-  const std::vector<glm::ivec2>& spans = this->Internal->CellSpans;
-  const int width = this->CurrentFrame.View.Viewport.x;
-  const int height = this->CurrentFrame.View.Viewport.y;
-  const int layers = this->Layers;
-  const int reach = grid.Reach;
-  const float cutoff = static_cast<float>(this->Cutoff);
-  const float full = this->CurrentFrame.FullCoverage;
-  const NegativeExponential exponential(cutoff);
-  const int bands = (height + BandHeight - 1) / BandHeight;
-  std::vector<vtkIdType> gathered(bands, 0);
-  vtkSMPTools::For(0, bands, 1,
-    [&](vtkIdType bandBegin, vtkIdType bandEnd)
-    {
-      const int rowBegin = static_cast<int>(bandBegin) * BandHeight;
-      const int rowEnd = std::min(static_cast<int>(bandEnd) * BandHeight, height);
-      vtkIdType written = 0;
-      for (int y = rowBegin; y < rowEnd; ++y)
-      {
-        // The pixels of the row that a filled cell reaches: pixel x gathers cells x to
-        // x + 2 reach of rows y to y + 2 reach (the grid is padded by reach).
-        glm::ivec2 span = EmptySpan;
-        for (int dy = 0; dy <= 2 * reach; ++dy)
-        {
-          span = glm::ivec2(std::min(span.x, spans[y + dy].x), std::max(span.y, spans[y + dy].y));
-        }
-        const int xBegin = std::max(span.x - 2 * reach, 0);
-        const int xEnd = std::min(span.y, width - 1);
-        for (int x = xBegin; x <= xEnd; ++x)
-        {
-          const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
-          Fragment* pixelFragments = &this->Fragments[pixel * layers];
-          std::uint8_t& count = this->FragmentCounts[pixel];
-          // One cell's surface, dx, dy pixels away, at depth z.
-          auto add = [&](const PixelCell& c, int dx, int dy, float z)
-          {
-            const float ox = dx + c.Offset[0];
-            const float oy = dy + c.Offset[1];
-            const float beta = 0.5f * (ox * ox + oy * oy) * c.InverseVariance;
-            if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]))
-            {
-              return;
-            }
-            bool inserted;
-            const int i = OpaqueSlot(pixelFragments, count, layers, z, c.Threshold, inserted);
-            if (i < 0)
-            {
-              return;
-            }
-            const float w =
-              static_cast<float>(splat::InverseTwoPi) * exponential(beta) * c.InverseVariance;
-            if (inserted)
-            {
-              pixelFragments[i] = Scaled(c.Sum, w, z);
-            }
-            else
-            {
-              AccumulateScaled(pixelFragments[i], c.Sum, w, z);
-            }
-            ++written;
-          };
-          // The cell's plane at this pixel's center, dx, dy pixels from its own.
-          auto depthAt = [](const PixelCell& c, int dx, int dy)
-          { return c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1]; };
-          // The cells' nearest surfaces first.
-          float deeper = std::numeric_limits<float>::infinity();
-          for (int dy = -reach; dy <= reach; ++dy)
-          {
-            const std::size_t row = static_cast<std::size_t>(y + dy + reach) * grid.Width;
-            for (int dx = -reach; dx <= reach; ++dx)
-            {
-              const std::size_t cell = row + (x + dx + reach);
-              if (cellCounts[cell] > 0)
-              {
-                deeper = std::min(deeper, deeperDepths[cell]);
-                const PixelCell& c = cells[cell * layers];
-                add(c, dx, dy, depthAt(c, dx, dy));
-              }
-            }
-          }
-          // Then their farther ones, but those behind a fully covered opaque front (whose
-          // depth can only decrease as the pixel gathers more).
-          const Fragment& front = pixelFragments[0];
-          const float hiding = count > 0 && front.Weight >= full &&
-              front.Alpha >= OpaqueAlpha * front.Weight
-            ? front.Depth
-            : std::numeric_limits<float>::infinity();
-          if (!(deeper <= hiding))
-          {
-            continue;
-          }
-          for (int dy = -reach; dy <= reach; ++dy)
-          {
-            const std::size_t row = static_cast<std::size_t>(y + dy + reach) * grid.Width;
-            for (int dx = -reach; dx <= reach; ++dx)
-            {
-              const std::size_t cell = row + (x + dx + reach);
-              for (int j = 1; j < cellCounts[cell] && deeperDepths[cell] <= hiding; ++j)
-              {
-                const PixelCell& c = cells[cell * layers + j];
-                const float z = depthAt(c, dx, dy);
-                if (!(z > hiding + c.Threshold))
-                {
-                  add(c, dx, dy, z);
-                }
-              }
-            }
-          }
-        }
-      }
-      gathered[bandBegin] = written;
-    });
-  return std::accumulate(gathered.begin(), gathered.end(), vtkIdType(0));
 }
 
 //------------------------------------------------------------------------------
@@ -1257,13 +841,13 @@ void vtkSurfaceSplatRasterizer::AddLayered(Fragment* fragments, std::uint8_t& co
   }
   if (nearest >= 0)
   {
-    Accumulate(fragments[nearest], z, w, normal, s.Color, s.Alpha);
+    splat::Accumulate(fragments[nearest], z, w, normal, s.Color, s.Alpha);
     return;
   }
   // Fragments stay sorted front to back: insert the new one in place.
   Fragment candidates[MaximumLayers + 1];
   int n = 0;
-  const Fragment added = NewFragment(z, w, normal, s.Color, s.Alpha);
+  const Fragment added = splat::NewFragment(z, w, normal, s.Color, s.Alpha);
   bool inserted = false;
   for (int i = 0; i < count; ++i)
   {
@@ -1339,7 +923,7 @@ void vtkSurfaceSplatRasterizer::Resolve()
           // what lies behind can no longer show.
           const Fragment* fragments = &this->Fragments[pixel * layers];
           glm::vec4 result(0.0f);
-          for (int i = 0; i < count && result.a < OpaqueAlpha; ++i)
+          for (int i = 0; i < count && result.a < splat::OpaqueAlpha; ++i)
           {
             const glm::vec4 shaded = this->ShadeFragment(fragments[i], x, static_cast<int>(y));
             result += shaded * (1.0f - result.a);

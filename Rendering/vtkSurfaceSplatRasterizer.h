@@ -52,6 +52,10 @@
 #include <vector>  // For the frame buffer
 
 class vtkSurfelHierarchy;
+namespace splat
+{
+struct SurfaceFragment;
+}
 
 
 class SPLATRENDERING_EXPORT vtkSurfaceSplatRasterizer : public vtkObject
@@ -221,11 +225,9 @@ public:
 
   // A pixel's surface and a splat after setup; declared here so that the implementation's
   // helper functions can name them.
-  struct Fragment;
+  using Fragment = splat::SurfaceFragment;
   struct ScreenSplat;
   struct DifferentialSplat;
-  struct MinifiedSplat;
-  struct PixelCell;
 
   ///@{
   /**
@@ -254,14 +256,10 @@ protected:
 
   void Splat(const Surfels& surfels, const Camera& camera, const std::vector<splat::Light>& lights,
     const splat::Material& material);
-  /// Steps 2b and 2c for the minified splats (see SetMinifiedVariance): their sums per pixel,
-  /// then each pixel's gather of its neighbors' sums (returns the contributions written).
-  void SumMinifiedSplats(vtkIdType chunks);
   /// Whether the fragments drawn so far hide a region of back-facing splats: splat centers in
   /// a box in model coordinates, axes up to `reach` long.
   bool RegionHidden(
     const glm::dvec3& low, const glm::dvec3& high, double reach, double nearDepth) const;
-  vtkIdType GatherMinifiedSplats(const float* sceneDepths);
   void AddLayered(Fragment* fragments, std::uint8_t& count, int x, int y, float z, float w,
     const float* normal, const ScreenSplat& s) const;
   /// Shaded premultiplied color and alpha (coverage included) of a fragment at pixel (x, y).

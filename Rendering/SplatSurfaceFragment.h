@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SplatSurfaceFragment.h
+ * @brief One surface's contributions to a pixel of the CPU surface rasterizer (paper 000, table
+ * 1), and how contributions join a pixel's fragments, which are kept sorted front to back.
+ *
+ * VTK-free; private to vtkSurfaceSplatRasterizer and its cells of minified splats
+ * (SplatMinifiedSplatCells.h).
+ */
+#ifndef SplatSurfaceFragment_h
+#define SplatSurfaceFragment_h
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace splat
+{
+
+/// Accumulated alpha beyond which the fragments behind change no 8-bit color.
+constexpr float OpaqueAlpha = 1.0f - 1e-4f;
+
+/**
+ * One surface's contributions to a pixel. A merged fragment has been shaded: its Weight is
+ * negative and Color holds the premultiplied shaded color.
+ */
+struct SurfaceFragment
+{
+  float Depth; ///< linear eye depth of the nearest contribution
+  float Weight;
+  float Alpha; ///< weighted opacity, or the merged opacity once shaded
+  float Color[3];
+  float Normal[3];
+
+  bool Shaded() const { return this->Weight < 0.0f; }
+};
+
+/// A contribution with its own normal (a differential point's varies from pixel to pixel).
+inline void Accumulate(
+  SurfaceFragment& f, float z, float w, const float* normal, const float* color, float alpha)
+{
+  f.Depth = std::min(f.Depth, z);
+  f.Weight += w;
+  f.Alpha += w * alpha;
+  f.Color[0] += w * color[0];
+  f.Color[1] += w * color[1];
+  f.Color[2] += w * color[2];
+  f.Normal[0] += w * normal[0];
+  f.Normal[1] += w * normal[1];
+  f.Normal[2] += w * normal[2];
+}
+
+inline SurfaceFragment NewFragment(
+  float z, float w, const float* normal, const float* color, float alpha)
+{
+  SurfaceFragment f;
+  f.Depth = z;
+  f.Weight = w;
+  f.Alpha = w * alpha;
+  for (int c = 0; c < 3; ++c)
+  {
+    f.Color[c] = w * color[c];
+    f.Normal[c] = w * normal[c];
+  }
+  return f;
+}
+
+/// Sums of contributions at depth z, each weighted w times as much.
+inline void AccumulateScaled(SurfaceFragment& f, const SurfaceFragment& sums, float w, float z)
+{
+  f.Depth = std::min(f.Depth, z);
+  f.Weight += w * sums.Weight;
+  f.Alpha += w * sums.Alpha;
+  for (int c = 0; c < 3; ++c)
+  {
+    f.Color[c] += w * sums.Color[c];
+    f.Normal[c] += w * sums.Normal[c];
+  }
+}
+
+inline SurfaceFragment Scaled(const SurfaceFragment& sums, float w, float z)
+{
+  SurfaceFragment f = sums;
+  f.Depth = z;
+  f.Weight *= w;
+  f.Alpha *= w;
+  for (int c = 0; c < 3; ++c)
+  {
+    f.Color[c] *= w;
+    f.Normal[c] *= w;
+  }
+  return f;
+}
+
+inline float DepthOf(const SurfaceFragment& f)
+{
+  return f.Depth;
+}
+
+/**
+ * Where an opaque contribution at eye depth z goes among a pixel's `count` items (fragments,
+ * or anything with a DepthOf), sorted front to back: the index of the surface within the z
+ * threshold, or, with `inserted` set, of a new surface shifted into place for the caller to
+ * fill; -1 when it falls behind the last of `layers` items and is hidden.
+ */
+template <typename Item>
+inline int OpaqueSlot(
+  Item* items, std::uint8_t& count, int layers, float z, float threshold, bool& inserted)
+{
+  int i = 0;
+  while (i < count && z > DepthOf(items[i]) + threshold)
+  {
+    ++i;
+  }
+  inserted = !(i < count && z >= DepthOf(items[i]) - threshold);
+  if (!inserted)
+  {
+    return i;
+  }
+  if (i == layers)
+  {
+    return -1;
+  }
+  const int kept = std::min<int>(count, layers - 1);
+  for (int j = kept; j > i; --j)
+  {
+    items[j] = items[j - 1];
+  }
+  count = static_cast<std::uint8_t>(kept + 1);
+  return i;
+}
+
+/**
+ * exp(-beta) for beta in [0, cutoff], tabulated once per frame and linearly interpolated: the
+ * paper's lookup table, within 2e-6 of std::exp for the default cutoff.
+ */
+class ExponentialTable
+{
+public:
+  explicit ExponentialTable(float cutoff)
+    : Scale(Size / cutoff)
+  {
+    for (int i = 0; i <= Size + 1; ++i)
+    {
+      this->Table[i] = std::exp(-static_cast<float>(i) / this->Scale);
+    }
+  }
+
+  float operator()(float beta) const
+  {
+    const float t = beta * this->Scale;
+    const int i = static_cast<int>(t);
+    return this->Table[i] + (t - i) * (this->Table[i + 1] - this->Table[i]);
+  }
+
+private:
+  static constexpr int Size = 1024;
+  float Scale;
+  float Table[Size + 2];
+};
+
+} // namespace splat
+
+#endif
