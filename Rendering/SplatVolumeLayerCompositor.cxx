@@ -2,6 +2,7 @@
 #include "SplatVolumeLayerCompositor.h"
 
 #include "SplatExponential.h"
+#include "SplatFloat8.h"
 
 #include <algorithm>
 #include <cmath>
@@ -112,31 +113,34 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::AddFactored(
   const int y0 = std::max(s.Y0, this->RowBegin);
   const int y1 = std::min(s.Y1, this->RowEnd);
   const int columns = s.X1 - s.X0 + 1;
-  const int count = ((columns + Lanes - 1) / Lanes) * Lanes;
+  const int groups = (columns + Lanes - 1) / Lanes;
   // Offsets from the pixel holding the center, where the cross table is centered.
   const int xc = static_cast<int>(std::floor(s.CenterX));
   const int yc = static_cast<int>(std::floor(s.CenterY));
   const float dxc = xc + 0.5f - s.CenterX;
   const float dyc = yc + 0.5f - s.CenterY;
   const float xx = s.ConicXX, xy = s.ConicXY, yy = s.ConicYY;
-  alignas(32) float columnFactors[MaximumFactoredColumns];
+  const Float8 lane = Float8::Iota();
+  Float8 columnFactors[MaximumFactoredColumns / Lanes];
   const int m0 = s.X0 - xc;
-  for (int i = 0; i < count; ++i)
+  for (int group = 0; group < groups; ++group)
   {
-    const float m = static_cast<float>(m0 + i);
-    const float dx = dxc + m;
-    const float factor = splat::NegativeExponential(xx * dx * dx + xy * dyc * m);
-    columnFactors[i] = i < columns ? factor : 0.0f;
+    const Float8 i = lane + static_cast<float>(group * Lanes);
+    const Float8 m = i + static_cast<float>(m0);
+    const Float8 dx = m + dxc;
+    const Float8 factor = Float8::NegativeExponential(xx * dx * dx + (xy * dyc) * m);
+    columnFactors[group] =
+      Float8::SelectLess(i, Float8(static_cast<float>(columns)), factor, Float8(0.0f));
   }
-  // The rows' factors in one vectorized pass too.
   alignas(32) float rowFactors[MaximumFactoredColumns];
   const int rows = std::max(y1 - y0 + 1, 0);
   const int n0 = y0 - yc;
-  for (int j = 0; j < ((rows + Lanes - 1) / Lanes) * Lanes; ++j)
+  for (int j = 0; j < rows; j += Lanes)
   {
-    const float n = static_cast<float>(n0 + j);
-    const float dy = dyc + n;
-    rowFactors[j] = s.Amplitude * splat::NegativeExponential(yy * dy * dy + xy * dxc * (n + dyc));
+    const Float8 n = lane + static_cast<float>(n0 + j);
+    const Float8 dy = n + dyc;
+    (s.Amplitude * Float8::NegativeExponential(yy * dy * dy + (xy * dxc) * (n + dyc)))
+      .Store(rowFactors + j);
   }
   const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
   for (int y = y0; y <= y1; ++y)
@@ -144,19 +148,20 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::AddFactored(
     const int n = y - yc;
     const float rowFactor = rowFactors[y - y0];
     const std::size_t row = this->Row(y, s);
-    float* __restrict depth = this->Sums[3].data() + row;
-    float* __restrict r = this->Sums[0].data() + row;
-    float* __restrict g = this->Sums[1].data() + row;
-    float* __restrict b = this->Sums[2].data() + row;
-    const float* __restrict crossRow =
+    float* depth = this->Sums[3].data() + row;
+    float* r = this->Sums[0].data() + row;
+    float* g = this->Sums[1].data() + row;
+    float* b = this->Sums[2].data() + row;
+    const float* crossRow =
       cross + static_cast<std::size_t>(n + reach) * crossStride + (m0 + reach);
-    for (int i = 0; i < count; ++i)
+    for (int group = 0; group < groups; ++group)
     {
-      const float t = rowFactor * columnFactors[i] * crossRow[i];
-      depth[i] += t;
-      r[i] += t * red;
-      g[i] += t * green;
-      b[i] += t * blue;
+      const int i = group * Lanes;
+      const Float8 t = rowFactor * columnFactors[group] * Float8::Load(crossRow + i);
+      (Float8::Load(depth + i) + t).Store(depth + i);
+      (Float8::Load(r + i) + t * red).Store(r + i);
+      (Float8::Load(g + i) + t * green).Store(g + i);
+      (Float8::Load(b + i) + t * blue).Store(b + i);
     }
   }
 }

@@ -108,11 +108,11 @@ public:
   /// The most columns and rows AddFactored takes.
   static constexpr int MaximumFactoredColumns = 64;
 
-private:
-  /// Whether some pixel of the columns kernel s covers still integrates (see Add).
-  SPLAT_ALWAYS_INLINE bool Reaches(const ScreenKernel& s) const
+  /// Whether some pixel of the band's columns [x0, x1] (within the image) still integrates,
+  /// at the granularity of the early termination (see Add).
+  SPLAT_ALWAYS_INLINE bool Integrates(int x0, int x1) const
   {
-    for (int tile = s.X0 / Lanes; tile <= s.X1 / Lanes; ++tile)
+    for (int tile = x0 / Lanes; tile <= x1 / Lanes; ++tile)
     {
       if (this->OpenPixels[tile] > 0)
       {
@@ -120,6 +120,13 @@ private:
       }
     }
     return false;
+  }
+
+private:
+  /// Whether some pixel of the columns kernel s covers still integrates (see Add).
+  SPLAT_ALWAYS_INLINE bool Reaches(const ScreenKernel& s) const
+  {
+    return this->Integrates(s.X0, s.X1);
   }
 
   /// Where the sums of band row y start at kernel s's first column; the layer's span of the row
