@@ -21,6 +21,8 @@
 namespace splat
 {
 #if defined(__GNUC__)
+// Inlined also into the AVX2 clones, whatever their size.
+#define SPLAT_FLOAT8 __attribute__((always_inline))
 struct Float8
 {
   typedef float Vector __attribute__((vector_size(32)));
@@ -28,33 +30,33 @@ struct Float8
   Vector V;
 
   Float8() = default;
-  Float8(float x)
+  SPLAT_FLOAT8 Float8(float x)
     : V(Vector{} + x)
   {
   }
-  explicit Float8(Vector v)
+  SPLAT_FLOAT8 explicit Float8(Vector v)
     : V(v)
   {
   }
-  static Float8 Iota() { return Float8(Vector{ 0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f }); }
-  static Float8 Load(const float* p)
+  SPLAT_FLOAT8 static Float8 Iota() { return Float8(Vector{ 0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f }); }
+  SPLAT_FLOAT8 static Float8 Load(const float* p)
   {
     Vector v;
     std::memcpy(&v, p, sizeof(v));
     return Float8(v);
   }
-  void Store(float* p) const { std::memcpy(p, &this->V, sizeof(this->V)); }
-  friend Float8 operator+(Float8 a, Float8 b) { return Float8(a.V + b.V); }
-  friend Float8 operator*(Float8 a, Float8 b) { return Float8(a.V * b.V); }
+  SPLAT_FLOAT8 void Store(float* p) const { std::memcpy(p, &this->V, sizeof(this->V)); }
+  SPLAT_FLOAT8 friend Float8 operator+(Float8 a, Float8 b) { return Float8(a.V + b.V); }
+  SPLAT_FLOAT8 friend Float8 operator*(Float8 a, Float8 b) { return Float8(a.V * b.V); }
 
   /// Per lane: a where the lane of `less` is below the one of `than`, b elsewhere.
-  static Float8 SelectLess(Float8 less, Float8 than, Float8 a, Float8 b)
+  SPLAT_FLOAT8 static Float8 SelectLess(Float8 less, Float8 than, Float8 a, Float8 b)
   {
     return Float8(less.V < than.V ? a.V : b.V);
   }
 
   /// splat::NegativeExponential per lane, step by step.
-  static Float8 NegativeExponential(Float8 x)
+  SPLAT_FLOAT8 static Float8 NegativeExponential(Float8 x)
   {
     constexpr float Log2E = 1.44269504088896341f;
     constexpr float Largest = 87.0f;
@@ -77,6 +79,7 @@ struct Float8
     return Float8(x.V < Largest ? p * scale : Vector{});
   }
 };
+#undef SPLAT_FLOAT8
 #else
 struct Float8
 {

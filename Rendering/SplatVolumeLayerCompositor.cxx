@@ -2,7 +2,6 @@
 #include "SplatVolumeLayerCompositor.h"
 
 #include "SplatExponential.h"
-#include "SplatFloat8.h"
 
 #include <algorithm>
 #include <cmath>
@@ -73,7 +72,8 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
   const int columns = s.X1 - s.X0 + 1;
   // Whole groups of lanes over the box's columns, the cutoff ellipse as a mask: no per-row
   // span and no scalar remainder.
-  const int count = ((columns + Lanes - 1) / Lanes) * Lanes;
+  const int groups = (columns + Lanes - 1) / Lanes;
+  const Float8 lane = Float8::Iota();
   const float dx0 = s.X0 + 0.5f - s.CenterX;
   for (int y = y0; y <= y1; ++y)
   {
@@ -81,23 +81,18 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
     const float bq = s.ConicXY * dy;
     const float yTerm = s.ConicYY * dy * dy;
     const std::size_t row = this->Row(y, s);
-    float* __restrict depth = this->Sums[3].data() + row;
-    float* __restrict r = this->Sums[0].data() + row;
-    float* __restrict g = this->Sums[1].data() + row;
-    float* __restrict b = this->Sums[2].data() + row;
-    const float* __restrict sceneDepths = this->SceneDepths.data() + row;
-    for (int i = 0; i < count; ++i)
+    for (int group = 0; group < groups; ++group)
     {
-      const float dx = dx0 + static_cast<float>(i);
-      const float beta = (xx * dx + bq) * dx + yTerm;
-      const float e = amplitude * splat::NegativeExponential(beta);
+      const int i = group * Lanes;
+      const Float8 column = lane + static_cast<float>(i);
+      const Float8 dx = column + dx0;
+      const Float8 beta = (xx * dx + bq) * dx + yTerm;
+      Float8 t = amplitude * Float8::NegativeExponential(beta);
+      t = Float8::SelectLess(beta, cutoff, t, 0.0f);
+      t = Float8::SelectLess(column, static_cast<float>(columns), t, 0.0f);
       // Behind the opaque scene the kernel adds nothing.
-      const bool inside = (beta < cutoff) & (i < columns) & (kernelDepth <= sceneDepths[i]);
-      const float t = inside ? e : 0.0f;
-      depth[i] += t;
-      r[i] += t * red;
-      g[i] += t * green;
-      b[i] += t * blue;
+      t = Float8::SelectLess(Float8::Load(this->SceneDepths.data() + row + i), kernelDepth, 0.0f, t);
+      this->Accumulate(row + i, t, red, green, blue);
     }
   }
 }
@@ -148,20 +143,13 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::AddFactored(
     const int n = y - yc;
     const float rowFactor = rowFactors[y - y0];
     const std::size_t row = this->Row(y, s);
-    float* depth = this->Sums[3].data() + row;
-    float* r = this->Sums[0].data() + row;
-    float* g = this->Sums[1].data() + row;
-    float* b = this->Sums[2].data() + row;
     const float* crossRow =
       cross + static_cast<std::size_t>(n + reach) * crossStride + (m0 + reach);
     for (int group = 0; group < groups; ++group)
     {
       const int i = group * Lanes;
-      const Float8 t = rowFactor * columnFactors[group] * Float8::Load(crossRow + i);
-      (Float8::Load(depth + i) + t).Store(depth + i);
-      (Float8::Load(r + i) + t * red).Store(r + i);
-      (Float8::Load(g + i) + t * green).Store(g + i);
-      (Float8::Load(b + i) + t * blue).Store(b + i);
+      this->Accumulate(
+        row + i, rowFactor * columnFactors[group] * Float8::Load(crossRow + i), red, green, blue);
     }
   }
 }

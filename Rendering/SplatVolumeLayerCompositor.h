@@ -16,6 +16,7 @@
 #ifndef SplatVolumeLayerCompositor_h
 #define SplatVolumeLayerCompositor_h
 
+#include "SplatFloat8.h"
 #include "vtkVolumeSplatRasterizer.h"
 
 #include <glm/glm.hpp>
@@ -127,6 +128,20 @@ private:
   SPLAT_ALWAYS_INLINE bool Reaches(const ScreenKernel& s) const
   {
     return this->Integrates(s.X0, s.X1);
+  }
+
+  /// Adds optical depths t times the color to the sums of eight pixels from `sum`.
+  SPLAT_ALWAYS_INLINE void Accumulate(
+    std::size_t sum, const Float8& t, float red, float green, float blue)
+  {
+    float* depth = this->Sums[3].data() + sum;
+    float* r = this->Sums[0].data() + sum;
+    float* g = this->Sums[1].data() + sum;
+    float* b = this->Sums[2].data() + sum;
+    (Float8::Load(depth) + t).Store(depth);
+    (Float8::Load(r) + t * red).Store(r);
+    (Float8::Load(g) + t * green).Store(g);
+    (Float8::Load(b) + t * blue).Store(b);
   }
 
   /// Where the sums of band row y start at kernel s's first column; the layer's span of the row
