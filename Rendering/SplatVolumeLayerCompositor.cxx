@@ -98,63 +98,6 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
 }
 
 //------------------------------------------------------------------------------
-SPLAT_VECTOR_CLONES void VolumeLayerCompositor::AddFactored(
-  const ScreenKernel& s, const float* cross, int reach, int crossStride)
-{
-  if (!this->Reaches(s))
-  {
-    return;
-  }
-  const int y0 = std::max(s.Y0, this->RowBegin);
-  const int y1 = std::min(s.Y1, this->RowEnd);
-  const int columns = s.X1 - s.X0 + 1;
-  const int groups = (columns + Lanes - 1) / Lanes;
-  // Offsets from the pixel holding the center, where the cross table is centered.
-  const int xc = static_cast<int>(std::floor(s.CenterX));
-  const int yc = static_cast<int>(std::floor(s.CenterY));
-  const float dxc = xc + 0.5f - s.CenterX;
-  const float dyc = yc + 0.5f - s.CenterY;
-  const float xx = s.ConicXX, xy = s.ConicXY, yy = s.ConicYY;
-  const Float8 lane = Float8::Iota();
-  Float8 columnFactors[MaximumFactoredColumns / Lanes];
-  const int m0 = s.X0 - xc;
-  for (int group = 0; group < groups; ++group)
-  {
-    const Float8 i = lane + static_cast<float>(group * Lanes);
-    const Float8 m = i + static_cast<float>(m0);
-    const Float8 dx = m + dxc;
-    const Float8 factor = Float8::NegativeExponential(xx * dx * dx + (xy * dyc) * m);
-    columnFactors[group] =
-      Float8::SelectLess(i, Float8(static_cast<float>(columns)), factor, Float8(0.0f));
-  }
-  alignas(32) float rowFactors[MaximumFactoredColumns];
-  const int rows = std::max(y1 - y0 + 1, 0);
-  const int n0 = y0 - yc;
-  for (int j = 0; j < rows; j += Lanes)
-  {
-    const Float8 n = lane + static_cast<float>(n0 + j);
-    const Float8 dy = n + dyc;
-    (s.Amplitude * Float8::NegativeExponential(yy * dy * dy + (xy * dxc) * (n + dyc)))
-      .Store(rowFactors + j);
-  }
-  const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
-  for (int y = y0; y <= y1; ++y)
-  {
-    const int n = y - yc;
-    const float rowFactor = rowFactors[y - y0];
-    const std::size_t row = this->Row(y, s);
-    const float* crossRow =
-      cross + static_cast<std::size_t>(n + reach) * crossStride + (m0 + reach);
-    for (int group = 0; group < groups; ++group)
-    {
-      const int i = group * Lanes;
-      this->Accumulate(
-        row + i, rowFactor * columnFactors[group] * Float8::Load(crossRow + i), red, green, blue);
-    }
-  }
-}
-
-//------------------------------------------------------------------------------
 void VolumeLayerCompositor::Flush(const float* weights, bool ascending, glm::vec4* buffer)
 {
   for (int y = this->RowBegin; y <= this->RowEnd; ++y)
