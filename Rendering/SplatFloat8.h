@@ -34,11 +34,14 @@ struct Float8
     : V(Vector{} + x)
   {
   }
-  SPLAT_FLOAT8 explicit Float8(Vector v)
+  SPLAT_FLOAT8 explicit Float8(const Vector& v)
     : V(v)
   {
   }
-  SPLAT_FLOAT8 static Float8 Iota() { return Float8(Vector{ 0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f }); }
+  SPLAT_FLOAT8 static Float8 Iota()
+  {
+    return Float8(Vector{ 0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f });
+  }
   SPLAT_FLOAT8 static Float8 Load(const float* p)
   {
     Vector v;
@@ -46,22 +49,29 @@ struct Float8
     return Float8(v);
   }
   SPLAT_FLOAT8 void Store(float* p) const { std::memcpy(p, &this->V, sizeof(this->V)); }
-  SPLAT_FLOAT8 friend Float8 operator+(Float8 a, Float8 b) { return Float8(a.V + b.V); }
-  SPLAT_FLOAT8 friend Float8 operator*(Float8 a, Float8 b) { return Float8(a.V * b.V); }
+  SPLAT_FLOAT8 friend Float8 operator+(const Float8& a, const Float8& b)
+  {
+    return Float8(a.V + b.V);
+  }
+  SPLAT_FLOAT8 friend Float8 operator*(const Float8& a, const Float8& b)
+  {
+    return Float8(a.V * b.V);
+  }
 
   /// Per lane: a where the lane of `less` is below the one of `than`, b elsewhere.
-  SPLAT_FLOAT8 static Float8 SelectLess(Float8 less, Float8 than, Float8 a, Float8 b)
+  SPLAT_FLOAT8 static Float8 SelectLess(
+    const Float8& less, const Float8& than, const Float8& a, const Float8& b)
   {
     return Float8(less.V < than.V ? a.V : b.V);
   }
 
   /// splat::NegativeExponential per lane, step by step.
-  SPLAT_FLOAT8 static Float8 NegativeExponential(Float8 x)
+  SPLAT_FLOAT8 static Float8 NegativeExponential(const Float8& x)
   {
     constexpr float Log2E = 1.44269504088896341f;
     constexpr float Largest = 87.0f;
-    const Vector clamped = x.V < -Largest ? Vector{} - Largest
-                                          : (x.V > Largest ? Vector{} + Largest : x.V);
+    const Vector clamped =
+      x.V < -Largest ? Vector{} - Largest : (x.V > Largest ? Vector{} + Largest : x.V);
     const Vector t = -clamped * Log2E;
     constexpr float Shifter = 12582912.0f;
     const Vector n = (t + Shifter) - Shifter;

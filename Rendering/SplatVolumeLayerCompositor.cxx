@@ -91,7 +91,8 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
       t = Float8::SelectLess(beta, cutoff, t, 0.0f);
       t = Float8::SelectLess(column, static_cast<float>(columns), t, 0.0f);
       // Behind the opaque scene the kernel adds nothing.
-      t = Float8::SelectLess(Float8::Load(this->SceneDepths.data() + row + i), kernelDepth, 0.0f, t);
+      const Float8 sceneDepth = Float8::Load(this->SceneDepths.data() + row + i);
+      t = Float8::SelectLess(sceneDepth, kernelDepth, 0.0f, t);
       this->Accumulate(row + i, t, red, green, blue);
     }
   }

@@ -103,7 +103,8 @@ public:
    * Inlined into the caller's loop over kernels (built for AVX2 too), which keeps its constants
    * in registers: the footprints are a few pixels, and the call and setup a good part of them.
    */
-  SPLAT_ALWAYS_INLINE void AddFactored(const ScreenKernel& s, const float* cross, int reach, int crossStride);
+  SPLAT_ALWAYS_INLINE void AddFactored(
+    const ScreenKernel& s, const float* cross, int reach, int crossStride);
 
   /// Puts the current layer under the band's pixels of `buffer` whose weight for the list has
   /// the traversal's sign (all pixels when weights is null), and starts a new layer.

@@ -414,15 +414,14 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
       const std::size_t r = static_cast<std::size_t>(k * rows + row);
       // The row's footprints together, left out where the band's pixels they reach have all
       // stopped integrating (behind the opaque parts, or where no pixel takes the list).
-      const glm::ivec2 span = columns(
-        static_cast<float>(rowSpans[r] & 0xffffu), static_cast<float>(rowSpans[r] >> 16), s.HalfExtent);
+      const glm::ivec2 span = columns(static_cast<float>(rowSpans[r] & 0xffffu),
+        static_cast<float>(rowSpans[r] >> 16), s.HalfExtent);
       if (starts[r] == starts[r + 1] || span.x > span.y || !compositor.Integrates(span.x, span.y))
       {
         continue;
       }
       const float v = static_cast<float>(row);
-      const Footprint* rowFootprints =
-        footprints + static_cast<int>(v * l.TileScale.y) * Tiles;
+      const Footprint* rowFootprints = footprints + static_cast<int>(v * l.TileScale.y) * Tiles;
       kernel.CenterY = s.Scale * v + offset.y;
       for (vtkIdType e = starts[r]; e < starts[r + 1]; ++e)
       {
