@@ -72,7 +72,8 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
   const int columns = s.X1 - s.X0 + 1;
   // Whole groups of lanes over the box's columns, the cutoff ellipse as a mask: no per-row
   // span and no scalar remainder.
-  const int count = ((columns + Lanes - 1) / Lanes) * Lanes;
+  const int groups = (columns + Lanes - 1) / Lanes;
+  const Float8 lane = Float8::Iota();
   const float dx0 = s.X0 + 0.5f - s.CenterX;
   for (int y = y0; y <= y1; ++y)
   {
@@ -80,83 +81,19 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
     const float bq = s.ConicXY * dy;
     const float yTerm = s.ConicYY * dy * dy;
     const std::size_t row = this->Row(y, s);
-    float* __restrict depth = this->Sums[3].data() + row;
-    float* __restrict r = this->Sums[0].data() + row;
-    float* __restrict g = this->Sums[1].data() + row;
-    float* __restrict b = this->Sums[2].data() + row;
-    const float* __restrict sceneDepths = this->SceneDepths.data() + row;
-    for (int i = 0; i < count; ++i)
+    for (int group = 0; group < groups; ++group)
     {
-      const float dx = dx0 + static_cast<float>(i);
-      const float beta = (xx * dx + bq) * dx + yTerm;
-      const float e = amplitude * splat::NegativeExponential(beta);
+      const int i = group * Lanes;
+      const Float8 column = lane + static_cast<float>(i);
+      const Float8 dx = column + dx0;
+      const Float8 beta = (xx * dx + bq) * dx + yTerm;
+      Float8 t = amplitude * Float8::NegativeExponential(beta);
+      t = Float8::SelectLess(beta, cutoff, t, 0.0f);
+      t = Float8::SelectLess(column, static_cast<float>(columns), t, 0.0f);
       // Behind the opaque scene the kernel adds nothing.
-      const bool inside = (beta < cutoff) & (i < columns) & (kernelDepth <= sceneDepths[i]);
-      const float t = inside ? e : 0.0f;
-      depth[i] += t;
-      r[i] += t * red;
-      g[i] += t * green;
-      b[i] += t * blue;
-    }
-  }
-}
-
-//------------------------------------------------------------------------------
-SPLAT_VECTOR_CLONES void VolumeLayerCompositor::AddFactored(
-  const ScreenKernel& s, const float* cross, int reach, int crossStride)
-{
-  if (!this->Reaches(s))
-  {
-    return;
-  }
-  const int y0 = std::max(s.Y0, this->RowBegin);
-  const int y1 = std::min(s.Y1, this->RowEnd);
-  const int columns = s.X1 - s.X0 + 1;
-  const int count = ((columns + Lanes - 1) / Lanes) * Lanes;
-  // Offsets from the pixel holding the center, where the cross table is centered.
-  const int xc = static_cast<int>(std::floor(s.CenterX));
-  const int yc = static_cast<int>(std::floor(s.CenterY));
-  const float dxc = xc + 0.5f - s.CenterX;
-  const float dyc = yc + 0.5f - s.CenterY;
-  const float xx = s.ConicXX, xy = s.ConicXY, yy = s.ConicYY;
-  alignas(32) float columnFactors[MaximumFactoredColumns];
-  const int m0 = s.X0 - xc;
-  for (int i = 0; i < count; ++i)
-  {
-    const float m = static_cast<float>(m0 + i);
-    const float dx = dxc + m;
-    const float factor = splat::NegativeExponential(xx * dx * dx + xy * dyc * m);
-    columnFactors[i] = i < columns ? factor : 0.0f;
-  }
-  // The rows' factors in one vectorized pass too.
-  alignas(32) float rowFactors[MaximumFactoredColumns];
-  const int rows = std::max(y1 - y0 + 1, 0);
-  const int n0 = y0 - yc;
-  for (int j = 0; j < ((rows + Lanes - 1) / Lanes) * Lanes; ++j)
-  {
-    const float n = static_cast<float>(n0 + j);
-    const float dy = dyc + n;
-    rowFactors[j] = s.Amplitude * splat::NegativeExponential(yy * dy * dy + xy * dxc * (n + dyc));
-  }
-  const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
-  for (int y = y0; y <= y1; ++y)
-  {
-    const int n = y - yc;
-    const float rowFactor = rowFactors[y - y0];
-    const std::size_t row = this->Row(y, s);
-    float* __restrict depth = this->Sums[3].data() + row;
-    float* __restrict r = this->Sums[0].data() + row;
-    float* __restrict g = this->Sums[1].data() + row;
-    float* __restrict b = this->Sums[2].data() + row;
-    const float* __restrict crossRow =
-      cross + static_cast<std::size_t>(n + reach) * crossStride + (m0 + reach);
-    for (int i = 0; i < count; ++i)
-    {
-      const float t = rowFactor * columnFactors[i] * crossRow[i];
-      depth[i] += t;
-      r[i] += t * red;
-      g[i] += t * green;
-      b[i] += t * blue;
+      const Float8 sceneDepth = Float8::Load(this->SceneDepths.data() + row + i);
+      t = Float8::SelectLess(sceneDepth, kernelDepth, 0.0f, t);
+      this->Accumulate(row + i, t, red, green, blue);
     }
   }
 }

@@ -16,12 +16,14 @@
 #ifndef SplatVolumeLayerCompositor_h
 #define SplatVolumeLayerCompositor_h
 
+#include "SplatFloat8.h"
 #include "vtkVolumeSplatRasterizer.h"
 
 #include <glm/glm.hpp>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -98,8 +100,11 @@ public:
    * cross[(n + reach) crossStride + m + reach] = exp(-ConicXY m n), a table of the kernels'
    * shared conic. That is one exponential per column and row instead of one per pixel. The
    * table must cover the box (|m|, |n| <= reach, a further group of lanes of zeros per row).
+   * Inlined into the caller's loop over kernels (built for AVX2 too), which keeps its constants
+   * in registers: the footprints are a few pixels, and the call and setup a good part of them.
    */
-  void AddFactored(const ScreenKernel& s, const float* cross, int reach, int crossStride);
+  SPLAT_ALWAYS_INLINE void AddFactored(
+    const ScreenKernel& s, const float* cross, int reach, int crossStride);
 
   /// Puts the current layer under the band's pixels of `buffer` whose weight for the list has
   /// the traversal's sign (all pixels when weights is null), and starts a new layer.
@@ -108,11 +113,11 @@ public:
   /// The most columns and rows AddFactored takes.
   static constexpr int MaximumFactoredColumns = 64;
 
-private:
-  /// Whether some pixel of the columns kernel s covers still integrates (see Add).
-  SPLAT_ALWAYS_INLINE bool Reaches(const ScreenKernel& s) const
+  /// Whether some pixel of the band's columns [x0, x1] (within the image) still integrates,
+  /// at the granularity of the early termination (see Add).
+  SPLAT_ALWAYS_INLINE bool Integrates(int x0, int x1) const
   {
-    for (int tile = s.X0 / Lanes; tile <= s.X1 / Lanes; ++tile)
+    for (int tile = x0 / Lanes; tile <= x1 / Lanes; ++tile)
     {
       if (this->OpenPixels[tile] > 0)
       {
@@ -120,6 +125,27 @@ private:
       }
     }
     return false;
+  }
+
+private:
+  /// Whether some pixel of the columns kernel s covers still integrates (see Add).
+  SPLAT_ALWAYS_INLINE bool Reaches(const ScreenKernel& s) const
+  {
+    return this->Integrates(s.X0, s.X1);
+  }
+
+  /// Adds optical depths t times the color to the sums of eight pixels from `sum`.
+  SPLAT_ALWAYS_INLINE void Accumulate(
+    std::size_t sum, const Float8& t, float red, float green, float blue)
+  {
+    float* depth = this->Sums[3].data() + sum;
+    float* r = this->Sums[0].data() + sum;
+    float* g = this->Sums[1].data() + sum;
+    float* b = this->Sums[2].data() + sum;
+    (Float8::Load(depth) + t).Store(depth);
+    (Float8::Load(r) + t * red).Store(r);
+    (Float8::Load(g) + t * green).Store(g);
+    (Float8::Load(b) + t * blue).Store(b);
   }
 
   /// Where the sums of band row y start at kernel s's first column; the layer's span of the row
@@ -154,6 +180,63 @@ private:
   std::vector<glm::ivec2> Spans; // per band row: the columns the layer touched
   std::vector<int> OpenPixels;    // per tile of Lanes columns: its open pixels (see Begin)
 };
+
+//------------------------------------------------------------------------------
+SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::AddFactored(
+  const ScreenKernel& s, const float* cross, int reach, int crossStride)
+{
+  if (!this->Reaches(s))
+  {
+    return;
+  }
+  const int y0 = std::max(s.Y0, this->RowBegin);
+  const int y1 = std::min(s.Y1, this->RowEnd);
+  const int columns = s.X1 - s.X0 + 1;
+  const int groups = (columns + Lanes - 1) / Lanes;
+  // Offsets from the pixel holding the center, where the cross table is centered.
+  const int xc = static_cast<int>(std::floor(s.CenterX));
+  const int yc = static_cast<int>(std::floor(s.CenterY));
+  const float dxc = xc + 0.5f - s.CenterX;
+  const float dyc = yc + 0.5f - s.CenterY;
+  const float xx = s.ConicXX, xy = s.ConicXY, yy = s.ConicYY;
+  const Float8 lane = Float8::Iota();
+  Float8 columnFactors[MaximumFactoredColumns / Lanes];
+  const int m0 = s.X0 - xc;
+  for (int group = 0; group < groups; ++group)
+  {
+    const Float8 i = lane + static_cast<float>(group * Lanes);
+    const Float8 m = i + static_cast<float>(m0);
+    const Float8 dx = m + dxc;
+    const Float8 factor = Float8::NegativeExponential(xx * dx * dx + (xy * dyc) * m);
+    columnFactors[group] =
+      Float8::SelectLess(i, Float8(static_cast<float>(columns)), factor, Float8(0.0f));
+  }
+  alignas(32) float rowFactors[MaximumFactoredColumns];
+  const int rows = std::max(y1 - y0 + 1, 0);
+  const int n0 = y0 - yc;
+  for (int j = 0; j < rows; j += Lanes)
+  {
+    const Float8 n = lane + static_cast<float>(n0 + j);
+    const Float8 dy = n + dyc;
+    (s.Amplitude * Float8::NegativeExponential(yy * dy * dy + (xy * dxc) * (n + dyc)))
+      .Store(rowFactors + j);
+  }
+  const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
+  for (int y = y0; y <= y1; ++y)
+  {
+    const int n = y - yc;
+    const float rowFactor = rowFactors[y - y0];
+    const std::size_t row = this->Row(y, s);
+    const float* crossRow =
+      cross + static_cast<std::size_t>(n + reach) * crossStride + (m0 + reach);
+    for (int group = 0; group < groups; ++group)
+    {
+      const int i = group * Lanes;
+      this->Accumulate(
+        row + i, rowFactor * columnFactors[group] * Float8::Load(crossRow + i), red, green, blue);
+    }
+  }
+}
 }
 
 #endif

@@ -91,6 +91,8 @@ struct vtkVolumeSplatSheetCompositor::Internals
   std::array<std::vector<glm::vec4>, 3> Values;
   std::array<const float*, 3> ValueColors{};
   std::array<std::vector<vtkIdType>, 3> RowStarts;
+  // Per list, sheet and row: the smallest and largest u of its entries, packed as the lattice.
+  std::array<std::vector<std::uint32_t>, 3> RowSpans;
 
   // Per list, per frame.
   struct List
@@ -297,6 +299,8 @@ void vtkVolumeSplatSheetCompositor::Internals::BuildTables(
   std::vector<vtkIdType>& starts = this->RowStarts[list];
   lattice.resize(order.size());
   starts.assign(static_cast<std::size_t>(dimensions[list] * rows + 1), 0);
+  std::vector<std::uint32_t>& spans = this->RowSpans[list];
+  spans.assign(static_cast<std::size_t>(dimensions[list] * rows), 0xffffu);
   const vtkIdType* ids = this->Input.GridIds;
   for (std::size_t n = 0; n < order.size(); ++n)
   {
@@ -305,7 +309,10 @@ void vtkVolumeSplatSheetCompositor::Internals::BuildTables(
       static_cast<int>(id / (nx * ny)));
     lattice[n] = static_cast<std::uint32_t>(index[axes.x]) |
       (static_cast<std::uint32_t>(index[axes.y]) << 16);
-    ++starts[index[list] * rows + index[axes.y] + 1];
+    const vtkIdType row = index[list] * rows + index[axes.y];
+    ++starts[row + 1];
+    const std::uint32_t u = static_cast<std::uint32_t>(index[axes.x]);
+    spans[row] = std::min(spans[row] & 0xffffu, u) | (std::max(spans[row] >> 16, u) << 16);
   }
   std::partial_sum(starts.begin(), starts.end(), starts.begin());
 }
@@ -369,6 +376,7 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
   const std::vector<std::uint32_t>& lattice = this->Lattice[list];
   const std::vector<glm::vec4>& values = this->Values[list];
   const std::vector<vtkIdType>& starts = this->RowStarts[list];
+  const std::vector<std::uint32_t>& rowSpans = this->RowSpans[list];
   const float cutoff = static_cast<float>(this->Cutoff);
   const int rowBegin = band * BandHeight;
   const int rowEnd = std::min(rowBegin + BandHeight, l.Size.y) - 1;
@@ -376,6 +384,11 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
   compositor.Begin(nullptr, true, this->Image.data());
   for (int n = 0; n < sheets; ++n)
   {
+    // Where the whole band has stopped integrating the sheets behind add nothing.
+    if (!compositor.Integrates(0, l.Size.x - 1))
+    {
+      break;
+    }
     const int k = l.Ascending ? n : sheets - 1 - n;
     const Sheet& s = l.Sheets[k];
     const glm::vec2 offset = s.Offset - glm::vec2(l.Origin);
@@ -384,50 +397,65 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
       static_cast<vtkIdType>(std::ceil((rowBegin + 0.5f - s.HalfExtent.y - offset.y) / s.Scale)));
     const vtkIdType last = std::min<vtkIdType>(rows - 1,
       static_cast<vtkIdType>(std::floor((rowEnd + 0.5f + s.HalfExtent.y - offset.y) / s.Scale)));
-    if (first > last)
-    {
-      continue;
-    }
     const float toSheet = this->Perspective ? 1.0f / (k - eye.z) : 0.0f;
     const Footprint* footprints = l.Footprints.data() + static_cast<std::size_t>(k) * Tiles * Tiles;
+    // The first and last intermediate columns that footprints of lattice columns [u0, u1] reach.
+    const auto columns = [&](float u0, float u1, const glm::vec2& halfExtent)
+    {
+      return glm::ivec2(
+        std::max(0, static_cast<int>(std::ceil(s.Scale * u0 + offset.x - halfExtent.x - 0.5f))),
+        std::min(l.Size.x - 1,
+          static_cast<int>(std::floor(s.Scale * u1 + offset.x + halfExtent.x - 0.5f))));
+    };
     vtkVolumeSplatRasterizer::ScreenKernel kernel;
     kernel.Depth = 0.0f;
-    for (vtkIdType e = starts[k * rows + first]; e < starts[k * rows + last + 1]; ++e)
+    for (vtkIdType row = first; row <= last; ++row)
     {
-      const float u = static_cast<float>(lattice[e] & 0xffffu);
-      const float v = static_cast<float>(lattice[e] >> 16);
-      const Footprint& f = footprints[static_cast<int>(v * l.TileScale.y) * Tiles +
-        static_cast<int>(u * l.TileScale.x)];
-      kernel.ConicXX = f.ConicXX;
-      kernel.ConicXY = f.ConicXY;
-      kernel.ConicYY = f.ConicYY;
-      kernel.CenterX = s.Scale * u + offset.x;
-      kernel.CenterY = s.Scale * v + offset.y;
-      kernel.X0 =
-        std::max(0, static_cast<int>(std::ceil(kernel.CenterX - f.HalfExtent.x - 0.5f)));
-      kernel.X1 = std::min(
-        l.Size.x - 1, static_cast<int>(std::floor(kernel.CenterX + f.HalfExtent.x - 0.5f)));
-      kernel.Y0 = static_cast<int>(std::ceil(kernel.CenterY - f.HalfExtent.y - 0.5f));
-      kernel.Y1 = static_cast<int>(std::floor(kernel.CenterY + f.HalfExtent.y - 0.5f));
-      // The path length along the voxel's ray per unit of index along the list's axis.
-      const glm::vec2 t = this->Perspective
-        ? (glm::vec2(u, v) - glm::vec2(eye)) * toSheet
-        : shear;
-      const float length = glm::length(axisA + t.x * axisU + t.y * axisV);
-      const glm::vec4& value = values[e];
-      kernel.Amplitude = f.Amplitude * length * value.w;
-      std::copy_n(&value.x, 3, kernel.Color);
-      if (kernel.X0 > kernel.X1)
+      const std::size_t r = static_cast<std::size_t>(k * rows + row);
+      // The row's footprints together, left out where the band's pixels they reach have all
+      // stopped integrating (behind the opaque parts, or where no pixel takes the list).
+      const glm::ivec2 span = columns(static_cast<float>(rowSpans[r] & 0xffffu),
+        static_cast<float>(rowSpans[r] >> 16), s.HalfExtent);
+      if (starts[r] == starts[r + 1] || span.x > span.y || !compositor.Integrates(span.x, span.y))
       {
         continue;
       }
-      if (f.Reach > 0)
+      const float v = static_cast<float>(row);
+      const Footprint* rowFootprints = footprints + static_cast<int>(v * l.TileScale.y) * Tiles;
+      kernel.CenterY = s.Scale * v + offset.y;
+      for (vtkIdType e = starts[r]; e < starts[r + 1]; ++e)
       {
-        compositor.AddFactored(kernel, l.Cross.data() + f.Cross, f.Reach, CrossStride(f.Reach));
-      }
-      else
-      {
-        compositor.Add(kernel);
+        const float u = static_cast<float>(lattice[e] & 0xffffu);
+        const Footprint& f = rowFootprints[static_cast<int>(u * l.TileScale.x)];
+        const glm::ivec2 x = columns(u, u, f.HalfExtent);
+        if (x.x > x.y || !compositor.Integrates(x.x, x.y))
+        {
+          continue;
+        }
+        kernel.X0 = x.x;
+        kernel.X1 = x.y;
+        kernel.ConicXX = f.ConicXX;
+        kernel.ConicXY = f.ConicXY;
+        kernel.ConicYY = f.ConicYY;
+        kernel.CenterX = s.Scale * u + offset.x;
+        kernel.Y0 = static_cast<int>(std::ceil(kernel.CenterY - f.HalfExtent.y - 0.5f));
+        kernel.Y1 = static_cast<int>(std::floor(kernel.CenterY + f.HalfExtent.y - 0.5f));
+        // The path length along the voxel's ray per unit of index along the list's axis.
+        const glm::vec2 t = this->Perspective
+          ? (glm::vec2(u, v) - glm::vec2(eye)) * toSheet
+          : shear;
+        const float length = glm::length(axisA + t.x * axisU + t.y * axisV);
+        const glm::vec4& value = values[e];
+        kernel.Amplitude = f.Amplitude * length * value.w;
+        std::copy_n(&value.x, 3, kernel.Color);
+        if (f.Reach > 0)
+        {
+          compositor.AddFactored(kernel, l.Cross.data() + f.Cross, f.Reach, CrossStride(f.Reach));
+        }
+        else
+        {
+          compositor.Add(kernel);
+        }
       }
     }
     compositor.Flush(nullptr, true, this->Image.data());
@@ -465,6 +493,7 @@ void vtkVolumeSplatSheetCompositor::Reset()
     this->Internal->Lattice[list].clear();
     this->Internal->ValueColors[list] = nullptr;
     this->Internal->RowStarts[list].clear();
+    this->Internal->RowSpans[list].clear();
   }
 }
 

@@ -27,7 +27,9 @@
  * against the exact path: one footprint per tile of a sheet, and the warp of an image sampled
  * at 0.7 samples per footprint deviation (TestVolumeSplatSheets bounds the difference).
  * Intermediate pixels that no screen pixel reads are left out, and pixels stop integrating at
- * the rasterizer's termination opacity.
+ * the rasterizer's termination opacity: a voxel row, or a voxel, whose footprints reach only
+ * such pixels is passed over before its setup, and a band of rows ends its traversal once all
+ * its pixels have stopped (all exact).
  *
  * It applies when the eye is outside the slab of a used list's sheets (with the kernels'
  * reach), the kernels stay in front of the near plane and the opaque scene lies behind them;
