@@ -20,6 +20,19 @@
 namespace splat
 {
 
+/// e^g for |g| <= 0.347 (g = f ln 2), by its Taylor polynomial of degree 6: for a float, or
+/// per lane for a vector of floats (splat::Float8).
+template <typename T>
+inline T ExponentialPolynomial(const T& g)
+{
+  T p = g * (1.0f / 720.0f) + 1.0f / 120.0f;
+  p = p * g + 1.0f / 24.0f;
+  p = p * g + 1.0f / 6.0f;
+  p = p * g + 0.5f;
+  p = p * g + 1.0f;
+  return p * g + 1.0f;
+}
+
 /// exp(-x) for x in [-87, +inf] within 2e-7 relative (see the file comment).
 inline float NegativeExponential(float x)
 {
@@ -31,13 +44,7 @@ inline float NegativeExponential(float x)
   constexpr float Shifter = 12582912.0f;
   const float n = (t + Shifter) - Shifter;
   const float f = (t - n) * 0.693147180559945309f; // 2^f = e^(f ln 2), |f ln 2| <= 0.347
-  float p = 1.0f / 720.0f;
-  p = p * f + 1.0f / 120.0f;
-  p = p * f + 1.0f / 24.0f;
-  p = p * f + 1.0f / 6.0f;
-  p = p * f + 0.5f;
-  p = p * f + 1.0f;
-  p = p * f + 1.0f;
+  const float p = ExponentialPolynomial(f);
   const std::int32_t exponent = (static_cast<std::int32_t>(n) + 127) << 23;
   float scale;
   std::memcpy(&scale, &exponent, sizeof(scale));

@@ -76,13 +76,7 @@ struct Float8
     constexpr float Shifter = 12582912.0f;
     const Vector n = (t + Shifter) - Shifter;
     const Vector f = (t - n) * 0.693147180559945309f;
-    Vector p = Vector{} + 1.0f / 720.0f;
-    p = p * f + 1.0f / 120.0f;
-    p = p * f + 1.0f / 24.0f;
-    p = p * f + 1.0f / 6.0f;
-    p = p * f + 0.5f;
-    p = p * f + 1.0f;
-    p = p * f + 1.0f;
+    const Vector p = ExponentialPolynomial(f);
     const Integers exponent = (__builtin_convertvector(n, Integers) + 127) << 23;
     Vector scale;
     std::memcpy(&scale, &exponent, sizeof(scale));
