@@ -70,7 +70,9 @@ inline glm::vec3 Shade(const std::vector<Light>& lights, const Material& materia
   if (HeadlightOnly(lights))
   {
     const float df = std::max(0.0f, normal.z);
-    const float sf = df > 0.0f ? std::pow(df, material.SpecularPower) : 0.0f;
+    // No pow where nothing specular is added (VTK's default property).
+    const bool specular = df > 0.0f && material.Specular != glm::vec3(0.0f);
+    const float sf = specular ? std::pow(df, material.SpecularPower) : 0.0f;
     return ambient + lights[0].Color * (df * diffuseColor + sf * material.Specular);
   }
   const glm::vec3 toEye =

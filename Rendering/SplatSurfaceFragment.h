@@ -35,6 +35,13 @@ struct SurfaceFragment
   bool Shaded() const { return this->Weight < 0.0f; }
 };
 
+/// Whether f is a fully covered (summed weight `full`) opaque surface: a pixel's blend stops at
+/// it, and nothing behind it shows.
+inline bool FullyCoveredOpaque(const SurfaceFragment& f, float full)
+{
+  return f.Weight >= full && f.Alpha >= OpaqueAlpha * f.Weight;
+}
+
 /// A contribution with its own normal (a differential point's varies from pixel to pixel).
 inline void Accumulate(
   SurfaceFragment& f, float z, float w, const float* normal, const float* color, float alpha)

@@ -91,6 +91,63 @@ struct vtkSurfaceSplatRasterizer::DifferentialSplat
   float CurvatureU, CurvatureV; // in inverse model units
   float U[3], V[3]; // unit eye-space principal directions, negated with a back-facing normal
 
+  // Narrows [xBegin, xEnd] to the pixels of row y (centers at py) that may lie inside the
+  // rectangle, where the splat's depth is numerator / denominator (affine in the pixel), so
+  // that Shade tests only those. Along a row, s times the denominator, S.(x, y, 1) d + SRay.(x,
+  // y, 1) n, is affine in x, and so is r's: the rays' origins (perspective) or directions
+  // (parallel) are constant, which zeroes the x terms of S and n, or of SRay and d. The span
+  // is solved in double with a relative slack and a pixel of margin, so that every pixel Shade
+  // accepts stays in it.
+  void NarrowRow(float py, const float* numerator, const float* denominator, int& xBegin,
+    int& xEnd) const
+  {
+    const double y = py;
+    const double n0 = numerator[0], ny = numerator[1] * y + numerator[2];
+    const double d0 = denominator[0], dy = denominator[1] * y + denominator[2];
+    // The denominator keeps one sign across the row, or the row is left whole.
+    const double dBegin = d0 * (xBegin + 0.5) + dy;
+    const double sign = dBegin > 0.0 ? 1.0 : -1.0;
+    if (!(dBegin * (d0 * (xEnd + 0.5) + dy) > 0.0))
+    {
+      return;
+    }
+    constexpr double Bound = 1.0 + 1e-4;
+    double lo = xBegin + 0.5, hi = xEnd + 0.5;
+    // Pixel centers x with -Bound |d(x)| <= c(x) d(x) = a x + b <= Bound |d(x)|, c = s or r.
+    auto narrow = [&](const float* c, const float* ray)
+    {
+      const double cy = c[1] * y + c[2], rayY = ray[1] * y + ray[2];
+      const double a = c[0] * dy + cy * d0 + ray[0] * ny + rayY * n0;
+      const double b = cy * dy + rayY * ny;
+      for (const double side : { -1.0, 1.0 })
+      {
+        const double slope = side * a - Bound * sign * d0;
+        const double offset = Bound * sign * dy - side * b;
+        if (slope > 0.0)
+        {
+          hi = std::min(hi, offset / slope);
+        }
+        else if (slope < 0.0)
+        {
+          lo = std::max(lo, offset / slope);
+        }
+        else if (offset < 0.0)
+        {
+          lo = std::numeric_limits<double>::infinity();
+        }
+      }
+    };
+    narrow(this->S, this->SRay);
+    narrow(this->T, this->TRay);
+    if (!(lo <= hi))
+    {
+      xEnd = xBegin - 1;
+      return;
+    }
+    xBegin = static_cast<int>(std::max<double>(xBegin, std::floor(lo - 0.5) - 1.0));
+    xEnd = static_cast<int>(std::min<double>(xEnd, std::ceil(hi - 0.5) + 1.0));
+  }
+
   // Whether pixel (x, y) at eye depth t lies inside the rectangle; the unit normal predicted
   // there (eq. 10) into normal, from the splat's normal n.
   bool Shade(float x, float y, float t, const float* n, bool rectangle, float* normal) const
@@ -378,6 +435,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const float* sceneDepths = sceneEyeDepths.empty() ? nullptr : sceneEyeDepths.data();
   const int layers = this->Layers;
   const splat::ExponentialTable exponential(cutoffF);
+  const float full = frame.FullCoverage;
 
   if (this->Internal->SplatCapacity < static_cast<std::size_t>(count))
   {
@@ -652,10 +710,14 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
               }
               const float root = std::sqrt(std::max(discriminant, 0.0f));
               const float inverse = 0.5f / s.ConicXX;
-              const int xBegin = rectangles ? s.X0 : std::max(
+              int xBegin = rectangles ? s.X0 : std::max(
                 s.X0, static_cast<int>(std::ceil(s.CenterX + (-bq - root) * inverse - 0.5f)));
-              const int xEnd = rectangles ? s.X1 : std::min(
+              int xEnd = rectangles ? s.X1 : std::min(
                 s.X1, static_cast<int>(std::floor(s.CenterX + (-bq + root) * inverse - 0.5f)));
+              if (rectangles)
+              {
+                d->NarrowRow(py, s.DepthNumerator, s.DepthDenominator, xBegin, xEnd);
+              }
               // Forward differences along the row (paper 000, section 4): the exponent is
               // quadratic and the depth's numerator and denominator affine in x.
               const float dx0 = xBegin + 0.5f - s.CenterX;
@@ -672,7 +734,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                        betaStep += betaStep2, numerator += s.DepthNumerator[0],
                        denominator += s.DepthDenominator[0])
               {
-                if ((!(beta < cutoffF) || beta < 0.0f) && !rectangles)
+                if (!rectangles && (!(beta < cutoffF) || beta < 0.0f))
                 {
                   continue; // rounding at the span's ends
                 }
@@ -680,6 +742,16 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                 if (!(z >= nearClip && z <= farClip) || (sceneDepths && z > sceneDepths[pixel]))
                 {
                   continue; // clipped, or hidden by opaque geometry already in the scene
+                }
+                Fragment* pixelFragments = &this->Fragments[pixel * layers];
+                std::uint8_t& count = this->FragmentCounts[pixel];
+                // Behind such a front by more than its z threshold, it would not join it and
+                // cannot show: left out before its weight and predicted normal are computed.
+                if (!translucent && count > 0 &&
+                  splat::FullyCoveredOpaque(pixelFragments[0], full) &&
+                  z > pixelFragments[0].Depth + s.Threshold)
+                {
+                  continue;
                 }
                 const float* normal = s.Normal;
                 float predicted[3];
@@ -692,8 +764,6 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                   normal = predicted;
                 }
                 const float w = rectangles ? 1.0f : s.Amplitude * exponential(beta);
-                Fragment* pixelFragments = &this->Fragments[pixel * layers];
-                std::uint8_t& count = this->FragmentCounts[pixel];
                 if (!translucent)
                 {
                   AddOpaque(pixelFragments, count, layers, z, w, normal, s);
@@ -813,8 +883,8 @@ bool vtkSurfaceSplatRasterizer::RegionHidden(
     {
       const std::size_t pixel = static_cast<std::size_t>(y) * view.Viewport.x + x;
       const Fragment& f = this->Fragments[pixel * this->Layers];
-      if (this->FragmentCounts[pixel] == 0 || f.Shaded() || !(f.Weight >= full) ||
-        !(f.Alpha >= splat::OpaqueAlpha * f.Weight) || !(f.Depth < farthest))
+      if (this->FragmentCounts[pixel] == 0 || !splat::FullyCoveredOpaque(f, full) ||
+        !(f.Depth < farthest))
       {
         return false;
       }

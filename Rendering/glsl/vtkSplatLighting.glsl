@@ -32,7 +32,7 @@ vec3 shade(vec3 color, vec3 position, vec3 normal)
   if (headlightOnly != 0)
   {
     float df = max(0.0, normal.z);
-    float sf = df > 0.0 ? pow(df, specularPower) : 0.0;
+    float sf = df > 0.0 && specular != vec3(0.0) ? pow(df, specularPower) : 0.0;
     return ambientTerm + lightColor[0] * (df * diffuseColor + sf * specular);
   }
   vec3 toEye = parallelProjection != 0 ? vec3(0.0, 0.0, 1.0) : normalize(-position);
