@@ -238,8 +238,7 @@ vtkIdType MinifiedSplatCells::Gather(SurfaceFragment* fragments, std::uint8_t* c
           // Then their farther ones, but those behind a fully covered opaque front (whose
           // depth can only decrease as the pixel gathers more).
           const SurfaceFragment& front = pixelFragments[0];
-          const float hiding = count > 0 && front.Weight >= full &&
-              front.Alpha >= OpaqueAlpha * front.Weight
+          const float hiding = count > 0 && FullyCoveredOpaque(front, full)
             ? front.Depth
             : std::numeric_limits<float>::infinity();
           if (!(deeper <= hiding))
