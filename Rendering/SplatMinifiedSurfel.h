@@ -108,7 +108,8 @@ public:
   static constexpr int BatchSize = 64;
   struct Batch
   {
-    // Loaded: the eye-space center, axes and normal, and the mass scale.
+    // Loaded: the eye-space center, the model-space axes and normal, and the mass scale.
+    // Project replaces the normal with the eye-space one turned towards the viewer.
     float PX[BatchSize], PY[BatchSize], PZ[BatchSize];
     float A0X[BatchSize], A0Y[BatchSize], A0Z[BatchSize];
     float A1X[BatchSize], A1Y[BatchSize], A1Z[BatchSize];

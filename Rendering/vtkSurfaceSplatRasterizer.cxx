@@ -500,141 +500,146 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         {
           const int batchCount = static_cast<int>(std::min<vtkIdType>(
             splat::MinifiedSurfelProjector::BatchSize, end - batchBegin));
-          for (int j = 0; minify && j < batchCount; ++j)
+          Source sources[splat::MinifiedSurfelProjector::BatchSize];
+          for (int j = 0; j < batchCount; ++j)
           {
-            const Source at = sourceOf(batchBegin + j);
+            const Source& at = sources[j] = sourceOf(batchBegin + j);
             const std::size_t i = at.Index;
-            minifiedProjector.Load(batch, j, at.Data->Positions + 3 * i,
-              at.Data->Normals + 3 * i, at.Data->Axes0 + 3 * i, at.Data->Axes1 + 3 * i,
-              static_cast<float>(at.MassScale));
+            if (minify)
+            {
+              minifiedProjector.Load(batch, j, at.Data->Positions + 3 * i,
+                at.Data->Normals + 3 * i, at.Data->Axes0 + 3 * i, at.Data->Axes1 + 3 * i,
+                static_cast<float>(at.MassScale));
+            }
           }
           if (minify)
           {
             minifiedProjector.Project(batch, batchCount);
           }
-        for (int j = 0; j < batchCount; ++j)
-        {
-          const vtkIdType k = batchBegin + j;
-          std::uint8_t& reason = reasons[k];
-          reason = OutsideFrustum;
-          const Source at = sourceOf(k);
-          const Surfels& source = *at.Data;
-          const std::size_t i = at.Index;
-          const double massScale = at.MassScale;
-          const double* position = source.Positions + 3 * i;
-          const float* n = source.Normals + 3 * i;
-          const float* axis0 = source.Axes0 + 3 * i;
-          const float* axis1 = source.Axes1 + 3 * i;
-          if (minify)
+          for (int j = 0; j < batchCount; ++j)
           {
-            splat::MinifiedSurfel m;
-            switch (batch.Outcome[j])
+            const vtkIdType k = batchBegin + j;
+            std::uint8_t& reason = reasons[k];
+            reason = OutsideFrustum;
+            const Source& at = sources[j];
+            const Surfels& source = *at.Data;
+            const std::size_t i = at.Index;
+            const double massScale = at.MassScale;
+            const double* position = source.Positions + 3 * i;
+            const float* n = source.Normals + 3 * i;
+            const float* axis0 = source.Axes0 + 3 * i;
+            const float* axis1 = source.Axes1 + 3 * i;
+            if (minify)
             {
-              case splat::MinifiedSurfelProjector::Minified:
-                if (minifiedProjector.Fill(batch, j, m))
-                {
-                  std::copy(source.Colors + 3 * i, source.Colors + 3 * i + 3, m.Color);
-                  m.Alpha = 1.0f;
-                  minifiedCells.List((k - first) / ChunkSize, m);
-                  reason = Minified;
-                }
-                continue;
-              case splat::MinifiedSurfelProjector::FacingAway:
-                reason = BackFacing;
-                continue;
-              case splat::MinifiedSurfelProjector::EdgeOn:
-                reason = Negligible;
-                continue;
-              case splat::MinifiedSurfelProjector::Magnified:
-                break;
-              default:
-                continue;
+              splat::MinifiedSurfel m;
+              switch (batch.Outcome[j])
+              {
+                case splat::MinifiedSurfelProjector::Minified:
+                  if (minifiedProjector.Fill(batch, j, m))
+                  {
+                    std::copy(source.Colors + 3 * i, source.Colors + 3 * i + 3, m.Color);
+                    m.Alpha = 1.0f;
+                    minifiedCells.List((k - first) / ChunkSize, m);
+                    reason = Minified;
+                  }
+                  continue;
+                case splat::MinifiedSurfelProjector::FacingAway:
+                  reason = BackFacing;
+                  continue;
+                case splat::MinifiedSurfelProjector::EdgeOn:
+                  reason = Negligible;
+                  continue;
+                case splat::MinifiedSurfelProjector::Magnified:
+                  break;
+                default:
+                  continue;
+              }
+            }
+            const glm::dvec3 p =
+              axisToEye * glm::dvec3(position[0], position[1], position[2]) + eyeTranslation;
+            const glm::dvec3 a0 = axisToEye * glm::dvec3(axis0[0], axis0[1], axis0[2]);
+            const glm::dvec3 a1 = axisToEye * glm::dvec3(axis1[0], axis1[1], axis1[2]);
+            // Culled when the whole splat lies outside the depth range: a large one reaches past
+            // the near or far plane from a center outside it (its fragments are clipped there).
+            const double depthExtent = depthReach * (std::abs(a0.z) + std::abs(a1.z));
+            if (!(-p.z + depthExtent >= nearDepth && -p.z - depthExtent <= farDepth))
+            {
+              continue;
+            }
+            splat::SurfelProjection projection;
+            if (!splat::ProjectSurfel(
+                  eyeToClip, viewport, p, footprintScale * a0, footprintScale * a1, projection))
+            {
+              continue;
+            }
+            glm::dvec3 normal = glm::normalize(normalToEye * glm::dvec3(n[0], n[1], n[2]));
+            const glm::dvec3 view = rays.Perspective ? p : glm::dvec3(0.0, 0.0, -1.0);
+            const bool backFacing = glm::dot(normal, view) > 0.0;
+            if (backFacing && cullBackFaces)
+            {
+              reason = BackFacing;
+              continue;
+            }
+            if (!(splat::Foreshortening(projection) >= splat::EdgeOnForeshortening))
+            {
+              reason = Negligible;
+              continue;
+            }
+            const splat::ResamplingKernel kernel =
+              splat::MakeResamplingKernel(projection, cutoff, filter);
+            glm::ivec4 box;
+            if (rectangles
+                ? !RectanglePixels(eyeToClip, viewport, p, a0, a1, box)
+                : !splat::CoveredPixels(kernel.Center, kernel.HalfExtent, width, height, box))
+            {
+              continue;
+            }
+            ScreenSplat& s = splats[k];
+            s.X0 = box.x;
+            s.X1 = box.y;
+            s.Y0 = box.z;
+            s.Y1 = box.w;
+            reason = Kept;
+
+            s.CenterX = static_cast<float>(kernel.Center.x);
+            s.CenterY = static_cast<float>(kernel.Center.y);
+            s.ConicXX = static_cast<float>(0.5 * kernel.Conic[0][0]);
+            s.ConicXY = static_cast<float>(kernel.Conic[1][0]);
+            s.ConicYY = static_cast<float>(0.5 * kernel.Conic[1][1]);
+            s.Amplitude = amplitudeScale * static_cast<float>(massScale * kernel.Amplitude);
+
+            splat::PlaneDepth depth;
+            if (!splat::MakePlaneDepth(rays, p, normal, depth))
+            {
+              depth.Numerator = glm::dvec3(0.0, 0.0, -p.z);
+              depth.Denominator = glm::dvec3(0.0, 0.0, 1.0);
+            }
+            for (int c = 0; c < 3; ++c)
+            {
+              s.DepthNumerator[c] = static_cast<float>(depth.Numerator[c]);
+              s.DepthDenominator[c] = static_cast<float>(depth.Denominator[c]);
+            }
+            s.Threshold =
+              static_cast<float>(depthThreshold * std::max(glm::length(a0), glm::length(a1)));
+
+            // Two-sided lighting: turn every normal towards the viewer before it is filtered.
+            if (backFacing)
+            {
+              normal = -normal;
+            }
+            for (int c = 0; c < 3; ++c)
+            {
+              s.Normal[c] = static_cast<float>(normal[c]);
+              s.Color[c] = source.Colors[3 * i + c];
+            }
+            s.Alpha = source.Opacities ? source.Opacities[i] : 1.0f;
+            if (differential)
+            {
+              SetUpDifferentialSplat(rays, p, a0, a1, glm::length(glm::dvec3(axis0[0], axis0[1],
+                axis0[2])), glm::length(glm::dvec3(axis1[0], axis1[1], axis1[2])),
+                source.Curvatures + 2 * i, backFacing, differentials[k]);
             }
           }
-          const glm::dvec3 p =
-            axisToEye * glm::dvec3(position[0], position[1], position[2]) + eyeTranslation;
-          const glm::dvec3 a0 = axisToEye * glm::dvec3(axis0[0], axis0[1], axis0[2]);
-          const glm::dvec3 a1 = axisToEye * glm::dvec3(axis1[0], axis1[1], axis1[2]);
-          // Culled when the whole splat lies outside the depth range: a large one reaches past
-          // the near or far plane from a center outside it (its fragments are clipped there).
-          const double depthExtent = depthReach * (std::abs(a0.z) + std::abs(a1.z));
-          if (!(-p.z + depthExtent >= nearDepth && -p.z - depthExtent <= farDepth))
-          {
-            continue;
-          }
-          splat::SurfelProjection projection;
-          if (!splat::ProjectSurfel(
-                eyeToClip, viewport, p, footprintScale * a0, footprintScale * a1, projection))
-          {
-            continue;
-          }
-          glm::dvec3 normal = glm::normalize(normalToEye * glm::dvec3(n[0], n[1], n[2]));
-          const glm::dvec3 view = rays.Perspective ? p : glm::dvec3(0.0, 0.0, -1.0);
-          const bool backFacing = glm::dot(normal, view) > 0.0;
-          if (backFacing && cullBackFaces)
-          {
-            reason = BackFacing;
-            continue;
-          }
-          if (!(splat::Foreshortening(projection) >= splat::EdgeOnForeshortening))
-          {
-            reason = Negligible;
-            continue;
-          }
-          const splat::ResamplingKernel kernel =
-            splat::MakeResamplingKernel(projection, cutoff, filter);
-          glm::ivec4 box;
-          if (rectangles ? !RectanglePixels(eyeToClip, viewport, p, a0, a1, box)
-                         : !splat::CoveredPixels(kernel.Center, kernel.HalfExtent, width, height, box))
-          {
-            continue;
-          }
-          ScreenSplat& s = splats[k];
-          s.X0 = box.x;
-          s.X1 = box.y;
-          s.Y0 = box.z;
-          s.Y1 = box.w;
-          reason = Kept;
-
-          s.CenterX = static_cast<float>(kernel.Center.x);
-          s.CenterY = static_cast<float>(kernel.Center.y);
-          s.ConicXX = static_cast<float>(0.5 * kernel.Conic[0][0]);
-          s.ConicXY = static_cast<float>(kernel.Conic[1][0]);
-          s.ConicYY = static_cast<float>(0.5 * kernel.Conic[1][1]);
-          s.Amplitude = amplitudeScale * static_cast<float>(massScale * kernel.Amplitude);
-
-          splat::PlaneDepth depth;
-          if (!splat::MakePlaneDepth(rays, p, normal, depth))
-          {
-            depth.Numerator = glm::dvec3(0.0, 0.0, -p.z);
-            depth.Denominator = glm::dvec3(0.0, 0.0, 1.0);
-          }
-          for (int c = 0; c < 3; ++c)
-          {
-            s.DepthNumerator[c] = static_cast<float>(depth.Numerator[c]);
-            s.DepthDenominator[c] = static_cast<float>(depth.Denominator[c]);
-          }
-          s.Threshold =
-            static_cast<float>(depthThreshold * std::max(glm::length(a0), glm::length(a1)));
-
-          // Two-sided lighting: turn every normal towards the viewer before it is filtered.
-          if (backFacing)
-          {
-            normal = -normal;
-          }
-          for (int c = 0; c < 3; ++c)
-          {
-            s.Normal[c] = static_cast<float>(normal[c]);
-            s.Color[c] = source.Colors[3 * i + c];
-          }
-          s.Alpha = source.Opacities ? source.Opacities[i] : 1.0f;
-          if (differential)
-          {
-            SetUpDifferentialSplat(rays, p, a0, a1, glm::length(glm::dvec3(axis0[0], axis0[1],
-              axis0[2])), glm::length(glm::dvec3(axis1[0], axis1[1], axis1[2])),
-              source.Curvatures + 2 * i, backFacing, differentials[k]);
-          }
-        }
         }
       });
 
