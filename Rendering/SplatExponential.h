@@ -20,17 +20,18 @@
 namespace splat
 {
 
-/// e^g for |g| <= 0.347 (g = f ln 2), by its Taylor polynomial of degree 6: for a float, or
-/// per lane for a vector of floats (splat::Float8).
+/// p = e^g for |g| <= 0.347 (g = f ln 2), by its Taylor polynomial of degree 6: for a float,
+/// or per lane for a vector of floats (splat::Float8; by reference, as vectors are passed
+/// there, so that no AVX vector is returned by value where AVX is not enabled).
 template <typename T>
-inline T ExponentialPolynomial(const T& g)
+inline void ExponentialPolynomial(const T& g, T& p)
 {
-  T p = g * (1.0f / 720.0f) + 1.0f / 120.0f;
+  p = g * (1.0f / 720.0f) + 1.0f / 120.0f;
   p = p * g + 1.0f / 24.0f;
   p = p * g + 1.0f / 6.0f;
   p = p * g + 0.5f;
   p = p * g + 1.0f;
-  return p * g + 1.0f;
+  p = p * g + 1.0f;
 }
 
 /// exp(-x) for x in [-87, +inf] within 2e-7 relative (see the file comment).
@@ -44,7 +45,8 @@ inline float NegativeExponential(float x)
   constexpr float Shifter = 12582912.0f;
   const float n = (t + Shifter) - Shifter;
   const float f = (t - n) * 0.693147180559945309f; // 2^f = e^(f ln 2), |f ln 2| <= 0.347
-  const float p = ExponentialPolynomial(f);
+  float p;
+  ExponentialPolynomial(f, p);
   const std::int32_t exponent = (static_cast<std::int32_t>(n) + 127) << 23;
   float scale;
   std::memcpy(&scale, &exponent, sizeof(scale));

@@ -76,7 +76,8 @@ struct Float8
     constexpr float Shifter = 12582912.0f;
     const Vector n = (t + Shifter) - Shifter;
     const Vector f = (t - n) * 0.693147180559945309f;
-    const Vector p = ExponentialPolynomial(f);
+    Vector p;
+    ExponentialPolynomial(f, p);
     const Integers exponent = (__builtin_convertvector(n, Integers) + 127) << 23;
     Vector scale;
     std::memcpy(&scale, &exponent, sizeof(scale));

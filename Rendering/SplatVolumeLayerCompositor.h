@@ -102,6 +102,8 @@ public:
    * table must cover the box (|m|, |n| <= reach, a further group of lanes of zeros per row).
    * Inlined into the caller's loop over kernels (built for AVX2 too), which keeps its constants
    * in registers: the footprints are a few pixels, and the call and setup a good part of them.
+   * Unlike Add it does not test whether the kernel's columns still integrate: its caller tests
+   * that (Integrates) before it sets the kernel up.
    */
   SPLAT_ALWAYS_INLINE void AddFactored(
     const ScreenKernel& s, const float* cross, int reach, int crossStride);
@@ -185,10 +187,6 @@ private:
 SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::AddFactored(
   const ScreenKernel& s, const float* cross, int reach, int crossStride)
 {
-  if (!this->Reaches(s))
-  {
-    return;
-  }
   const int y0 = std::max(s.Y0, this->RowBegin);
   const int y1 = std::min(s.Y1, this->RowEnd);
   const int columns = s.X1 - s.X0 + 1;
