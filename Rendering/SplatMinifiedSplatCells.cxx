@@ -12,8 +12,20 @@ namespace splat
 {
 namespace
 {
-// A row of cells that holds none.
-const glm::ivec2 EmptySpan(std::numeric_limits<int>::max(), std::numeric_limits<int>::min());
+// The index of the lowest set bit of a nonzero word.
+inline int CountTrailingZeros(std::uint64_t word)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  return __builtin_ctzll(word);
+#else
+  int n = 0;
+  for (; !(word & 1); word >>= 1)
+  {
+    ++n;
+  }
+  return n;
+#endif
+}
 
 // A minified splat into the cells of the pixel holding its center, as an opaque contribution
 // joins a pixel's fragments, with its offset from the pixel's center weighted by its mass.
@@ -57,6 +69,7 @@ void MinifiedSplatCells::SetUp(
   this->Width = width + 2 * this->Reach;
   this->Height = height + 2 * this->Reach;
   this->Bands = (this->Height + BandHeight - 1) / BandHeight;
+  this->Words = (this->Width + 63) / 64;
 }
 
 //------------------------------------------------------------------------------
@@ -91,8 +104,8 @@ void MinifiedSplatCells::Sum(vtkIdType chunks)
   counts.resize(static_cast<std::size_t>(this->Width) * this->Height);
   std::vector<float>& deeperDepths = this->DeeperDepths;
   deeperDepths.resize(counts.size());
-  std::vector<glm::ivec2>& spans = this->Spans;
-  spans.resize(this->Height);
+  std::vector<std::uint64_t>& filled = this->Filled;
+  filled.resize(static_cast<std::size_t>(this->Words) * this->Height);
   vtkSMPTools::For(0, this->Bands, 1,
     [&](vtkIdType bandBegin, vtkIdType bandEnd)
     {
@@ -102,7 +115,8 @@ void MinifiedSplatCells::Sum(vtkIdType chunks)
       std::fill(counts.begin() + first, counts.begin() + last, 0);
       const int rowBegin = static_cast<int>(bandBegin) * BandHeight;
       const int rowEnd = std::min(static_cast<int>(bandEnd) * BandHeight, this->Height);
-      std::fill(spans.begin() + rowBegin, spans.begin() + rowEnd, EmptySpan);
+      std::fill(filled.begin() + static_cast<std::size_t>(rowBegin) * this->Words,
+        filled.begin() + static_cast<std::size_t>(rowEnd) * this->Words, 0);
       for (vtkIdType b = bandBegin; b < bandEnd; ++b)
       {
         for (vtkIdType chunk = 0; chunk < chunks; ++chunk)
@@ -111,8 +125,9 @@ void MinifiedSplatCells::Sum(vtkIdType chunks)
           {
             const int x = FloorToInt(m.CenterX);
             const int y = FloorToInt(m.CenterY);
-            glm::ivec2& span = spans[y + this->Reach];
-            span = glm::ivec2(std::min(span.x, x + this->Reach), std::max(span.y, x + this->Reach));
+            const int column = x + this->Reach;
+            filled[static_cast<std::size_t>(y + this->Reach) * this->Words + column / 64] |=
+              std::uint64_t(1) << (column % 64);
             const std::size_t cell =
               static_cast<std::size_t>(y + this->Reach) * this->Width + (x + this->Reach);
             Deposit(&cells[cell * layers], counts[cell], layers, m, m.CenterX - (x + 0.5f),
@@ -157,7 +172,8 @@ vtkIdType MinifiedSplatCells::Gather(SurfaceFragment* fragments, std::uint8_t* c
   const std::vector<Cell>& cells = this->Cells;
   const std::vector<std::uint8_t>& cellCounts = this->Counts;
   const std::vector<float>& deeperDepths = this->DeeperDepths;
-  const std::vector<glm::ivec2>& spans = this->Spans;
+  const std::vector<std::uint64_t>& filled = this->Filled;
+  const int words = this->Words;
   const int width = this->ViewportWidth;
   const int height = this->ViewportHeight;
   const int layers = this->Layers;
@@ -172,95 +188,121 @@ vtkIdType MinifiedSplatCells::Gather(SurfaceFragment* fragments, std::uint8_t* c
       const int rowBegin = static_cast<int>(bandBegin) * BandHeight;
       const int rowEnd = std::min(static_cast<int>(bandEnd) * BandHeight, height);
       vtkIdType written = 0;
+      // Pixel (x, y) gathers the cells within the reach into its fragments.
+      auto gatherPixel = [&](int x, int y)
+      {
+        const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
+        SurfaceFragment* pixelFragments = &fragments[pixel * layers];
+        std::uint8_t& count = counts[pixel];
+        // One cell's surface, dx, dy pixels away, at depth z; left out behind a fully covered
+        // opaque front fragment by more than its z threshold, where it could not show.
+        auto add = [&](const Cell& c, int dx, int dy, float z)
+        {
+          const float ox = dx + c.Offset[0];
+          const float oy = dy + c.Offset[1];
+          const float beta = 0.5f * (ox * ox + oy * oy) * c.InverseVariance;
+          if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]) ||
+            (count > 0 && z > pixelFragments[0].Depth + c.Threshold &&
+              FullyCoveredOpaque(pixelFragments[0], full)))
+          {
+            return;
+          }
+          bool inserted;
+          const int i = OpaqueSlot(pixelFragments, count, layers, z, c.Threshold, inserted);
+          if (i < 0)
+          {
+            return;
+          }
+          const float w =
+            static_cast<float>(InverseTwoPi) * exponential(beta) * c.InverseVariance;
+          if (inserted)
+          {
+            pixelFragments[i] = Scaled(c.Sum, w, z);
+          }
+          else
+          {
+            AccumulateScaled(pixelFragments[i], c.Sum, w, z);
+          }
+          ++written;
+        };
+        // The cell's plane at this pixel's center, dx, dy pixels from its own.
+        auto depthAt = [](const Cell& c, int dx, int dy)
+        { return c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1]; };
+        // The cells' nearest surfaces first.
+        float deeper = std::numeric_limits<float>::infinity();
+        for (int dy = -reach; dy <= reach; ++dy)
+        {
+          const std::size_t row = static_cast<std::size_t>(y + dy + reach) * this->Width;
+          for (int dx = -reach; dx <= reach; ++dx)
+          {
+            const std::size_t cell = row + (x + dx + reach);
+            if (cellCounts[cell] > 0)
+            {
+              deeper = std::min(deeper, deeperDepths[cell]);
+              const Cell& c = cells[cell * layers];
+              add(c, dx, dy, depthAt(c, dx, dy));
+            }
+          }
+        }
+        // Then their farther ones, but those behind a fully covered opaque front (whose
+        // depth can only decrease as the pixel gathers more).
+        const SurfaceFragment& front = pixelFragments[0];
+        const float hiding = count > 0 && FullyCoveredOpaque(front, full)
+          ? front.Depth
+          : std::numeric_limits<float>::infinity();
+        if (!(deeper <= hiding))
+        {
+          return;
+        }
+        for (int dy = -reach; dy <= reach; ++dy)
+        {
+          const std::size_t row = static_cast<std::size_t>(y + dy + reach) * this->Width;
+          for (int dx = -reach; dx <= reach; ++dx)
+          {
+            const std::size_t cell = row + (x + dx + reach);
+            for (int j = 1; j < cellCounts[cell] && deeperDepths[cell] <= hiding; ++j)
+            {
+              const Cell& c = cells[cell * layers + j];
+              const float z = depthAt(c, dx, dy);
+              if (!(z > hiding + c.Threshold))
+              {
+                add(c, dx, dy, z);
+              }
+            }
+          }
+        }
+      };
+      std::vector<std::uint64_t> reached(words + 1); // one word past the row: none filled
       for (int y = rowBegin; y < rowEnd; ++y)
       {
         // The pixels of the row that a filled cell reaches: pixel x gathers cells x to
-        // x + 2 reach of rows y to y + 2 reach (the grid is padded by reach).
-        glm::ivec2 span = EmptySpan;
-        for (int dy = 0; dy <= 2 * reach; ++dy)
+        // x + 2 reach of rows y to y + 2 reach (the grid is padded by reach), so bit x of
+        // `pixels` is set where any of those is filled (2 reach < 64: the rasterizer clamps
+        // the cutoff to 50 and the variance to 1).
+        for (int word = 0; word < words; ++word)
         {
-          span = glm::ivec2(std::min(span.x, spans[y + dy].x), std::max(span.y, spans[y + dy].y));
+          std::uint64_t any = 0;
+          for (int dy = 0; dy <= 2 * reach; ++dy)
+          {
+            any |= filled[static_cast<std::size_t>(y + dy) * words + word];
+          }
+          reached[word] = any;
         }
-        const int xBegin = std::max(span.x - 2 * reach, 0);
-        const int xEnd = std::min(span.y, width - 1);
-        for (int x = xBegin; x <= xEnd; ++x)
+        for (int word = 0; word < words; ++word)
         {
-          const std::size_t pixel = static_cast<std::size_t>(y) * width + x;
-          SurfaceFragment* pixelFragments = &fragments[pixel * layers];
-          std::uint8_t& count = counts[pixel];
-          // One cell's surface, dx, dy pixels away, at depth z.
-          auto add = [&](const Cell& c, int dx, int dy, float z)
+          std::uint64_t pixels = reached[word];
+          for (int shift = 1; shift <= 2 * reach; ++shift)
           {
-            const float ox = dx + c.Offset[0];
-            const float oy = dy + c.Offset[1];
-            const float beta = 0.5f * (ox * ox + oy * oy) * c.InverseVariance;
-            if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]))
-            {
-              return;
-            }
-            bool inserted;
-            const int i = OpaqueSlot(pixelFragments, count, layers, z, c.Threshold, inserted);
-            if (i < 0)
-            {
-              return;
-            }
-            const float w =
-              static_cast<float>(InverseTwoPi) * exponential(beta) * c.InverseVariance;
-            if (inserted)
-            {
-              pixelFragments[i] = Scaled(c.Sum, w, z);
-            }
-            else
-            {
-              AccumulateScaled(pixelFragments[i], c.Sum, w, z);
-            }
-            ++written;
-          };
-          // The cell's plane at this pixel's center, dx, dy pixels from its own.
-          auto depthAt = [](const Cell& c, int dx, int dy)
-          { return c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1]; };
-          // The cells' nearest surfaces first.
-          float deeper = std::numeric_limits<float>::infinity();
-          for (int dy = -reach; dy <= reach; ++dy)
-          {
-            const std::size_t row = static_cast<std::size_t>(y + dy + reach) * this->Width;
-            for (int dx = -reach; dx <= reach; ++dx)
-            {
-              const std::size_t cell = row + (x + dx + reach);
-              if (cellCounts[cell] > 0)
-              {
-                deeper = std::min(deeper, deeperDepths[cell]);
-                const Cell& c = cells[cell * layers];
-                add(c, dx, dy, depthAt(c, dx, dy));
-              }
-            }
+            pixels |= (reached[word] >> shift) | (reached[word + 1] << (64 - shift));
           }
-          // Then their farther ones, but those behind a fully covered opaque front (whose
-          // depth can only decrease as the pixel gathers more).
-          const SurfaceFragment& front = pixelFragments[0];
-          const float hiding = count > 0 && FullyCoveredOpaque(front, full)
-            ? front.Depth
-            : std::numeric_limits<float>::infinity();
-          if (!(deeper <= hiding))
+          for (; pixels != 0; pixels &= pixels - 1)
           {
-            continue;
-          }
-          for (int dy = -reach; dy <= reach; ++dy)
-          {
-            const std::size_t row = static_cast<std::size_t>(y + dy + reach) * this->Width;
-            for (int dx = -reach; dx <= reach; ++dx)
+            const int x = 64 * word + CountTrailingZeros(pixels);
+            if (x >= width)
             {
-              const std::size_t cell = row + (x + dx + reach);
-              for (int j = 1; j < cellCounts[cell] && deeperDepths[cell] <= hiding; ++j)
-              {
-                const Cell& c = cells[cell * layers + j];
-                const float z = depthAt(c, dx, dy);
-                if (!(z > hiding + c.Threshold))
-                {
-                  add(c, dx, dy, z);
-                }
-              }
+              break;
             }
+            gatherPixel(x, y);
           }
         }
       }

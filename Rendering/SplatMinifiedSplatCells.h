@@ -102,9 +102,10 @@ private:
   // Per cell, a bound below which none of its farther surfaces reaches a pixel it is gathered
   // into: the smallest depth minus z threshold over its reach (infinite with one surface).
   std::vector<float> DeeperDepths;
-  // Per row of cells, the first and last that hold any: the gather skips the pixels no cell
-  // reaches.
-  std::vector<glm::ivec2> Spans;
+  // Per row of cells, a bit per cell that holds any (Words words a row): the gather visits only
+  // the pixels a filled cell reaches.
+  int Words = 0;
+  std::vector<std::uint64_t> Filled;
 };
 
 inline float DepthOf(const MinifiedSplatCells::Cell& c)

@@ -32,9 +32,6 @@ enum CullReason
 // Rows per band: small enough to balance the threads, large enough that few kernels straddle bands.
 constexpr int BandHeight = 16;
 
-// The share of the surfels that a hierarchy's selection must merge for the frame to draw it.
-constexpr double MinimumMergedShare = 0.25;
-
 // Surfels per setup chunk: the minified splats are listed chunk by chunk, so that every pixel
 // sums them in input order whatever the number of threads.
 constexpr vtkIdType ChunkSize = 16384;
@@ -400,8 +397,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   splat::MinifiedSplatCells& minifiedCells = this->Internal->MinifiedCells;
   minifiedCells.SetUp(width, height, this->Layers, cutoff, this->MinifiedVariance);
   const int reach = minifiedCells.GetReach();
-  // With a hierarchy of the surfels, the splats are the nodes it selects, whose coarser levels
-  // are all minified.
+  // With a hierarchy of the surfels, the splats are the nodes it selects (whose coarser levels
+  // are all minified), read block by block from its copy, and regions facing away come last.
   const vtkSurfelHierarchy* hierarchy = minify && surfels.Hierarchy &&
       surfels.Hierarchy->GetNumberOfSurfels() == static_cast<vtkIdType>(surfels.Count)
     ? surfels.Hierarchy
@@ -409,18 +406,14 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<std::uint32_t>& items = this->Internal->Items;
   std::vector<vtkSurfelHierarchy::BackRegion>& backRegions = this->Internal->BackRegions;
   backRegions.clear();
-  this->MergedCount = hierarchy
-    ? hierarchy->Select(camera, this->MinifiedVariance, items, backRegions, MinimumMergedShare)
-    : vtkIdType(0);
-  // The hierarchy's order reads the surfels out of their order in memory: where it merges
-  // few of them, drawing them in order is faster.
-  if (this->MergedCount < MinimumMergedShare * static_cast<double>(surfels.Count))
+  this->MergedCount =
+    hierarchy ? hierarchy->Select(camera, this->MinifiedVariance, items, backRegions) : 0;
+  if (hierarchy && items.empty())
   {
-    hierarchy = nullptr;
-    this->MergedCount = 0;
-    backRegions.clear();
+    hierarchy = nullptr; // degenerate input: level 0 only
   }
-  const Surfels merged = hierarchy ? hierarchy->GetMergedSurfels() : Surfels();
+  const Surfels nodes = hierarchy ? hierarchy->GetNodes() : Surfels();
+  const float* massScales = hierarchy ? hierarchy->GetMassScales() : nullptr;
   const vtkIdType count = static_cast<vtkIdType>(hierarchy ? items.size() : surfels.Count);
   std::vector<DifferentialSplat>& differentials = this->Internal->DifferentialSplats;
   differentials.resize(differential ? count : 0);
@@ -478,8 +471,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         {
           minifiedCells.ClearChunk(c);
         }
-        // Splat k: surfel i of the input or merged node i of the hierarchy, and the ratio of
-        // its mass to the area its axes span (1 but for merged nodes).
+        // Splat k: surfel k of the input or the node of the hierarchy that item k selects, and
+        // the ratio of its mass to the area its axes span (1 but for merged nodes).
         struct Source
         {
           const Surfels* Data;
@@ -488,11 +481,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         };
         auto sourceOf = [&](vtkIdType k)
         {
-          const std::size_t item = hierarchy ? items[k] : static_cast<std::size_t>(k);
-          return item < surfels.Count
-            ? Source{ &surfels, item, 1.0 }
-            : Source{ &merged, item - surfels.Count,
-                hierarchy->GetMassScales()[item - surfels.Count] };
+          return hierarchy ? Source{ &nodes, items[k], massScales[items[k]] }
+                           : Source{ &surfels, static_cast<std::size_t>(k), 1.0 };
         };
         splat::MinifiedSurfelProjector::Batch batch;
         for (vtkIdType batchBegin = begin; batchBegin < end;

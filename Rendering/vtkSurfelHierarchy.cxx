@@ -142,7 +142,7 @@ vtkIdType vtkSurfelHierarchy::GetNumberOfNodes(int level) const
 }
 
 //------------------------------------------------------------------------------
-vtkSurfaceSplatRasterizer::Surfels vtkSurfelHierarchy::GetMergedSurfels() const
+vtkSurfaceSplatRasterizer::Surfels vtkSurfelHierarchy::GetNodes() const
 {
   return vtkSurfaceSplatRasterizer::Surfels::Of(
     this->Positions, this->Normals, this->Axes0, this->Axes1, this->Colors);
@@ -154,7 +154,6 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
   const std::size_t n = surfels.Count;
   this->SurfelCount = static_cast<vtkIdType>(n);
   this->Spacing = 0.0;
-  this->Order.clear();
   this->LevelNodes.clear();
   this->LevelOffsets.clear();
   for (std::vector<float>* v : { &this->Normals, &this->Axes0, &this->Axes1, &this->Colors,
@@ -220,10 +219,10 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
       }
     });
   vtkSMPTools::Sort(entries.begin(), entries.end());
-  this->Order.resize(n);
+  std::vector<std::uint32_t> order(n);
   for (std::size_t k = 0; k < n; ++k)
   {
-    this->Order[k] = entries[k].Index;
+    order[k] = entries[k].Index;
   }
 
   // Level l's nodes are the runs of equal keys with the last 3 (l - 1) bits dropped: nested
@@ -252,20 +251,36 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
   }
   entries = std::vector<Entry>();
 
-  // The merged nodes, level by level, each from the nodes of the level below.
+  // The nodes: the surfels in sorted order, then the merged nodes level by level, each from the
+  // nodes of the level below.
   const int levels = static_cast<int>(this->LevelNodes.size());
-  std::size_t merged = 0;
+  std::size_t nodeCount = n;
   for (const std::vector<std::uint32_t>& starts : this->LevelNodes)
   {
-    this->LevelOffsets.push_back(static_cast<std::uint32_t>(merged));
-    merged += starts.size() - 1;
+    this->LevelOffsets.push_back(static_cast<std::uint32_t>(nodeCount));
+    nodeCount += starts.size() - 1;
   }
-  this->Positions.resize(3 * merged);
+  this->Positions.resize(3 * nodeCount);
   for (std::vector<float>* v : { &this->Normals, &this->Axes0, &this->Axes1, &this->Colors })
   {
-    v->resize(3 * merged);
+    v->resize(3 * nodeCount);
   }
-  this->MassScales.resize(merged);
+  this->MassScales.assign(nodeCount, 1.0f);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(n),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType k = begin; k < end; ++k)
+      {
+        const std::size_t i = order[k];
+        std::copy_n(surfels.Positions + 3 * i, 3, &this->Positions[3 * k]);
+        std::copy_n(surfels.Normals + 3 * i, 3, &this->Normals[3 * k]);
+        std::copy_n(surfels.Axes0 + 3 * i, 3, &this->Axes0[3 * k]);
+        std::copy_n(surfels.Axes1 + 3 * i, 3, &this->Axes1[3 * k]);
+        std::copy_n(surfels.Colors + 3 * i, 3, &this->Colors[3 * k]);
+      }
+    });
+  order = std::vector<std::uint32_t>();
+  const vtkSurfaceSplatRasterizer::Surfels sorted = this->GetNodes();
   std::vector<Moments> below;
   for (int level = 1; level <= levels; ++level)
   {
@@ -285,7 +300,7 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
           if (!childStarts)
           {
             m = Merge(starts[j], starts[j + 1],
-              [&](std::size_t k) { return SurfelMoments(surfels, this->Order[k]); });
+              [&](std::size_t k) { return SurfelMoments(sorted, k); });
           }
           else
           {
@@ -349,21 +364,20 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
         float* axes = &this->BlockAxes[b * (levels + 1)];
         for (std::uint32_t k = blocks[b]; k < blocks[b + 1]; ++k)
         {
-          const std::size_t i = this->Order[k];
-          const double* p = surfels.Positions + 3 * i;
+          const double* p = sorted.Positions + 3 * k;
           low = glm::min(low, glm::dvec3(p[0], p[1], p[2]));
           high = glm::max(high, glm::dvec3(p[0], p[1], p[2]));
-          const float* n = surfels.Normals + 3 * i;
+          const float* n = sorted.Normals + 3 * k;
           normals += glm::dvec3(n[0], n[1], n[2]);
           axes[0] = std::max(
-            { axes[0], axisLength(surfels.Axes0 + 3 * i), axisLength(surfels.Axes1 + 3 * i) });
+            { axes[0], axisLength(sorted.Axes0 + 3 * k), axisLength(sorted.Axes1 + 3 * k) });
         }
         block.Reach = axes[0];
         block.ConeAxis = glm::length(normals) > 0.0 ? glm::normalize(normals) : glm::dvec3(0.0);
         double cosine = 1.0;
         for (std::uint32_t k = blocks[b]; k < blocks[b + 1]; ++k)
         {
-          const float* n = surfels.Normals + 3 * this->Order[k];
+          const float* n = sorted.Normals + 3 * k;
           cosine = std::min(cosine, glm::dot(block.ConeAxis, glm::dvec3(n[0], n[1], n[2])));
         }
         block.ConeAngle = std::acos(std::max(-1.0, cosine));
@@ -396,21 +410,19 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
 vtkIdType vtkSurfelHierarchy::Select(const vtkSurfaceSplatRasterizer::Camera& camera,
   double variance, std::vector<std::uint32_t>& items) const
 {
-  return this->SelectBlocks(camera, variance, items, nullptr, 0.0);
+  return this->SelectBlocks(camera, variance, items, nullptr);
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkSurfelHierarchy::Select(const vtkSurfaceSplatRasterizer::Camera& camera,
-  double variance, std::vector<std::uint32_t>& items, std::vector<BackRegion>& backRegions,
-  double minimumMerged) const
+  double variance, std::vector<std::uint32_t>& items, std::vector<BackRegion>& backRegions) const
 {
-  return this->SelectBlocks(camera, variance, items, &backRegions, minimumMerged);
+  return this->SelectBlocks(camera, variance, items, &backRegions);
 }
 
 //------------------------------------------------------------------------------
 vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Camera& camera,
-  double variance, std::vector<std::uint32_t>& items, std::vector<BackRegion>* backRegions,
-  double minimumMerged) const
+  double variance, std::vector<std::uint32_t>& items, std::vector<BackRegion>* backRegions) const
 {
   items.clear();
   if (backRegions)
@@ -447,7 +459,6 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
   const glm::dmat3 normalToEye = glm::transpose(glm::inverse(glm::dmat3(modelToEye)));
   const std::vector<std::uint32_t>& blocks = this->LevelNodes.back();
   const vtkIdType blockCount = static_cast<vtkIdType>(blocks.size()) - 1;
-  const std::uint32_t surfelCount = static_cast<std::uint32_t>(this->SurfelCount);
   // The splats of block b at level `level`, in order, to emit(item, surfels it stands for):
   // its nodes, but for those seen at a grazing angle, whose surfels are drawn instead.
   auto visit = [&](vtkIdType b, int level, auto&& emit)
@@ -456,7 +467,7 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
     {
       for (std::uint32_t k = blocks[b]; k < blocks[b + 1]; ++k)
       {
-        emit(this->Order[k], 0);
+        emit(k, 0);
       }
       return;
     }
@@ -482,12 +493,12 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
       {
         for (std::uint32_t k = starts[j]; k < starts[j + 1]; ++k)
         {
-          emit(this->Order[k], 0);
+          emit(k, 0);
         }
       }
       else
       {
-        emit(surfelCount + static_cast<std::uint32_t>(node), starts[j + 1] - starts[j]);
+        emit(static_cast<std::uint32_t>(node), starts[j + 1] - starts[j]);
       }
     }
   };
@@ -546,19 +557,6 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
         away[b] = facesAway(block, center);
       }
     });
-  vtkIdType mergeable = 0;
-  for (vtkIdType b = 0; b < blockCount; ++b)
-  {
-    mergeable += chosen[b] > 0 ? blocks[b + 1] - blocks[b] : 0;
-  }
-  if (mergeable == 0 || mergeable < minimumMerged * static_cast<double>(this->SurfelCount))
-  {
-    if (backRegions)
-    {
-      backRegions->clear();
-    }
-    return 0;
-  }
   // A block emits at most one item per surfel: block b's items are written from blocks[b] on,
   // counted, then moved into order.
   items.resize(this->SurfelCount);

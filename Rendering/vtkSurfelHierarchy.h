@@ -8,7 +8,9 @@
  * than what they add. vtkSurfelHierarchy merges them ahead of time, once per surfel set, into
  * coarser levels, and picks per frame the coarsest level that still draws minified splats.
  *
- * Level 0 is the surfels themselves. A node of level l > 0 merges the surfels whose positions
+ * Level 0 is the surfels themselves, kept as a copy in the order below, so that a frame reads
+ * them, as it reads the merged nodes, block by block from consecutive memory. A node of level
+ * l > 0 merges the surfels whose positions
  * lie in one cell of side h 2^l of a grid, h the surfels' mean spacing (the square root of their
  * mean area), and whose normals share their dominant axis and its sign, so that the two sides of
  * a thin part never merge. A node is one elliptical Gaussian: the merged surfels' mass (the sum
@@ -60,19 +62,20 @@ public:
   vtkIdType GetNumberOfNodes(int level) const;
 
   /**
-   * The merged nodes of every level above 0, level by level, as surfels (opaque, no
-   * curvatures), and the mass scale of each.
+   * Every node as a surfel (opaque, no curvatures): the surfels of level 0 in sorted order,
+   * then the merged nodes of every level above 0, level by level; and the mass scale of each
+   * (1 for the surfels).
    */
-  vtkSurfaceSplatRasterizer::Surfels GetMergedSurfels() const;
+  vtkSurfaceSplatRasterizer::Surfels GetNodes() const;
   const float* GetMassScales() const { return this->MassScales.data(); }
 
   /**
    * The splats to draw for a camera: for each block the nodes of the coarsest level whose
    * splats' warped basis variance (see vtkSurfaceSplatRasterizer::SetMinifiedVariance) is at
-   * most `variance` pixels^2 at the block's nearest depth, or its surfels. An item i below
-   * GetNumberOfSurfels() is surfel i; any other is merged node i - GetNumberOfSurfels().
-   * Returns the number of surfels the merged nodes among them stand for. Where no block merges
-   * it selects nothing: the surfels are drawn as they are.
+   * most `variance` pixels^2 at the block's nearest depth, or its surfels: item i is node i of
+   * GetNodes(), and each surfel is drawn once, by itself or by a node that stands for it.
+   * Returns the number of surfels the merged nodes among them stand for. Degenerate input
+   * (level 0 only) selects nothing.
    */
   vtkIdType Select(const vtkSurfaceSplatRasterizer::Camera& camera, double variance,
     std::vector<std::uint32_t>& items) const;
@@ -94,13 +97,10 @@ public:
 
   /**
    * Select() that also lists the regions whose splats all face away from the eye: their items
-   * come last, region by region, after those of the regions that may face it. Selects nothing
-   * (returns 0, no items) where the regions drawn merged hold less than minimumMerged of the
-   * surfels.
+   * come last, region by region, after those of the regions that may face it.
    */
   vtkIdType Select(const vtkSurfaceSplatRasterizer::Camera& camera, double variance,
-    std::vector<std::uint32_t>& items, std::vector<BackRegion>& backRegions,
-    double minimumMerged = 0.0) const;
+    std::vector<std::uint32_t>& items, std::vector<BackRegion>& backRegions) const;
 
 protected:
   vtkSurfelHierarchy() = default;
@@ -111,18 +111,15 @@ private:
   void operator=(const vtkSurfelHierarchy&) = delete;
 
   vtkIdType SelectBlocks(const vtkSurfaceSplatRasterizer::Camera& camera, double variance,
-    std::vector<std::uint32_t>& items, std::vector<BackRegion>* backRegions,
-    double minimumMerged) const;
+    std::vector<std::uint32_t>& items, std::vector<BackRegion>* backRegions) const;
 
   vtkIdType SurfelCount = 0;
   double Spacing = 0.0;
-  // Level 0: the surfels in sorted order.
-  std::vector<std::uint32_t> Order;
   // Per level above 0: where each of its nodes starts among the sorted surfels (one past the
-  // end last), and where its nodes start among the merged ones.
+  // end last), and where its nodes start among all nodes.
   std::vector<std::vector<std::uint32_t>> LevelNodes;
   std::vector<std::uint32_t> LevelOffsets;
-  // The merged nodes, level by level.
+  // The nodes: the sorted surfels, then the merged nodes level by level.
   std::vector<double> Positions;
   std::vector<float> Normals;
   std::vector<float> Axes0;

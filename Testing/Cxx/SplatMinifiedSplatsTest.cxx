@@ -307,8 +307,8 @@ TEST(MinifiedSplats, CheckerboardAtTheHorizonMatchesTheExactKernels)
 }
 
 // A bowl (a hemisphere seen from its open side, tilted): its inside faces away from the eye
-// and nothing hides it, so no region of it is left out and the level of detail draws it as the
-// summed minified splats do.
+// and nothing hides it, so no region of it is left out: the level of detail draws it as the
+// summed minified splats do, and those as the exact kernels do.
 TEST(MinifiedSplats, VisibleBackFacesAreNotHidden)
 {
   SurfelGrid bowl = SurfelSphere(400000, 0.3, glm::dvec3(0.0));
@@ -337,18 +337,25 @@ TEST(MinifiedSplats, VisibleBackFacesAreNotHidden)
     glm::lookAt(glm::dvec3(0.0, 0.8, 1.5), glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0));
   camera.EyeToClip = glm::perspective(glm::radians(30.0), 1.0, 0.1, 10.0);
   camera.Viewport = glm::ivec2(Size, Size);
+  const Frame exact = Draw(bowl, camera, Path::Exact);
   const Frame minified = Draw(bowl, camera, Path::Minified);
   const Frame detail = Draw(bowl, camera, Path::LevelOfDetail);
   const double color = ColorRMSE(minified, detail);
   const double alpha = RMSE(minified, detail, 3, [](std::size_t) { return true; });
+  const double colorExact = ColorRMSE(exact, minified);
+  const double alphaExact = RMSE(exact, minified, 3, [](std::size_t) { return true; });
   std::printf("bowl: %lld of %lld surfels merged, %lld splats hidden, color RMSE %.4f, alpha "
-              "RMSE %.4f against the summed minified splats\n",
+              "RMSE %.4f against the summed minified splats (%lld hidden), which are within "
+              "%.4f and %.4f of the exact kernels\n",
     static_cast<long long>(detail.Merged), static_cast<long long>(kept),
-    static_cast<long long>(detail.Hidden), color, alpha);
+    static_cast<long long>(detail.Hidden), color, alpha,
+    static_cast<long long>(minified.Hidden), colorExact, alphaExact);
   EXPECT_GT(detail.Merged, 0.5 * kept);
   EXPECT_EQ(detail.Hidden, 0);
   EXPECT_LT(color, 0.015);
   EXPECT_LT(alpha, 0.03);
+  EXPECT_LT(colorExact, 0.015);
+  EXPECT_LT(alphaExact, 0.06);
 }
 
 // The minified splats' sums do not depend on the number of threads.

@@ -19,7 +19,7 @@ using namespace splat_test;
 
 namespace
 {
-// Node `node` of the merged surfels: its mass (area) and its mass-weighted position and color.
+// Node `node` of the hierarchy: its mass (area) and its mass-weighted position and color.
 struct NodeMass
 {
   double Mass;
@@ -29,7 +29,7 @@ struct NodeMass
 
 NodeMass MassOf(const vtkSurfelHierarchy* hierarchy, std::size_t node)
 {
-  const vtkSurfaceSplatRasterizer::Surfels merged = hierarchy->GetMergedSurfels();
+  const vtkSurfaceSplatRasterizer::Surfels merged = hierarchy->GetNodes();
   const glm::dvec3 a0(
     merged.Axes0[3 * node], merged.Axes0[3 * node + 1], merged.Axes0[3 * node + 2]);
   const glm::dvec3 a1(
@@ -51,7 +51,8 @@ vtkSurfaceSplatRasterizer::Camera CameraAt(double d, int size)
 }
 }
 
-// Every level of a colored plane keeps the total mass, the center of mass and the mean color.
+// Every level of a colored plane, level 0 (the sorted copy of the surfels) included, keeps the
+// total mass, the center of mass and the mean color.
 TEST(SurfelHierarchy, LevelsKeepMassCenterAndColor)
 {
   const SurfelGrid plane(256, 256, 0.01, 0.01, 0.01, 0.01,
@@ -69,10 +70,13 @@ TEST(SurfelHierarchy, LevelsKeepMassCenterAndColor)
       area * glm::dvec3(plane.Colors[3 * i], plane.Colors[3 * i + 1], plane.Colors[3 * i + 2]);
   }
   std::size_t node = 0;
-  for (int level = 1; level < hierarchy->GetNumberOfLevels(); ++level)
+  for (int level = 0; level < hierarchy->GetNumberOfLevels(); ++level)
   {
     const vtkIdType nodes = hierarchy->GetNumberOfNodes(level);
-    EXPECT_LT(nodes, hierarchy->GetNumberOfNodes(level - 1)) << "level " << level;
+    if (level > 0)
+    {
+      EXPECT_LT(nodes, hierarchy->GetNumberOfNodes(level - 1)) << "level " << level;
+    }
     NodeMass sum{ 0.0, glm::dvec3(0.0), glm::dvec3(0.0) };
     for (vtkIdType j = 0; j < nodes; ++j, ++node)
     {
@@ -85,7 +89,7 @@ TEST(SurfelHierarchy, LevelsKeepMassCenterAndColor)
     EXPECT_LT(glm::length(sum.Position - surfels.Position) / surfels.Mass, 1e-6);
     EXPECT_LT(glm::length(sum.Color - surfels.Color) / surfels.Mass, 1e-5);
   }
-  EXPECT_EQ(node, hierarchy->GetMergedSurfels().Count);
+  EXPECT_EQ(node, hierarchy->GetNodes().Count);
 }
 
 // A plate of two sides 1e-4 apart with opposite normals: no node mixes them, so every merged
@@ -108,9 +112,9 @@ TEST(SurfelHierarchy, SidesOfAThinPlateNeverMerge)
   vtkNew<vtkSurfelHierarchy> hierarchy;
   hierarchy->Build(plate.View());
   ASSERT_GT(hierarchy->GetNumberOfLevels(), 2);
-  const vtkSurfaceSplatRasterizer::Surfels merged = hierarchy->GetMergedSurfels();
+  const vtkSurfaceSplatRasterizer::Surfels merged = hierarchy->GetNodes();
   std::size_t node = 0;
-  for (int level = 1; level < hierarchy->GetNumberOfLevels(); ++level)
+  for (int level = 0; level < hierarchy->GetNumberOfLevels(); ++level)
   {
     vtkIdType up = 0;
     for (vtkIdType j = 0; j < hierarchy->GetNumberOfNodes(level); ++j, ++node)
@@ -122,9 +126,9 @@ TEST(SurfelHierarchy, SidesOfAThinPlateNeverMerge)
   }
 }
 
-// Near, nothing merges and nothing is selected (the surfels are drawn as they are); far, merged
-// nodes stand for all of them; along a strip from near to far, each surfel is drawn once, by
-// itself or by the node that stands for it.
+// Near, nothing merges and every surfel is selected once, from level 0; far, merged nodes stand
+// for all of them; along a strip from near to far, each surfel is drawn once, by itself or by
+// the node that stands for it.
 TEST(SurfelHierarchy, SelectionFollowsTheDistance)
 {
   const SurfelGrid plane(200, 0.005, glm::vec3(1.0f));
@@ -134,7 +138,13 @@ TEST(SurfelHierarchy, SelectionFollowsTheDistance)
   std::vector<std::uint32_t> items;
   // Near: 0.005 units span about 4.7 pixels at distance 2 in 512^2.
   EXPECT_EQ(hierarchy->Select(CameraAt(2.0, 512), 0.75, items), 0);
-  EXPECT_TRUE(items.empty());
+  ASSERT_EQ(items.size(), n);
+  std::vector<std::uint32_t> sorted(items);
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    EXPECT_EQ(sorted[k], k);
+  }
   // Far: 0.005 units span about 0.19 pixels at distance 50.
   const vtkIdType merged = hierarchy->Select(CameraAt(50.0, 512), 0.75, items);
   EXPECT_EQ(merged, static_cast<vtkIdType>(n));
