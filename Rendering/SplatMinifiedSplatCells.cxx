@@ -12,6 +12,10 @@ namespace splat
 {
 namespace
 {
+// The largest reach for which a pixel's gather first tries to join all its cells into one
+// fragment (the default cutoff and variance have a reach of 1).
+constexpr int MaximumJoinedReach = 2;
+
 // The index of the lowest set bit of a nonzero word.
 inline int CountTrailingZeros(std::uint64_t word)
 {
@@ -228,6 +232,63 @@ vtkIdType MinifiedSplatCells::Gather(SurfaceFragment* fragments, std::uint8_t* c
         // The cell's plane at this pixel's center, dx, dy pixels from its own.
         auto depthAt = [](const Cell& c, int dx, int dy)
         { return c.Sum.Depth - dx * c.DepthSlope[0] - dy * c.DepthSlope[1]; };
+        // Most pixels hold nothing yet and have one surface in each cell within the reach,
+        // all within each other's z thresholds: every contribution then joins one fragment,
+        // added here in the same order as below, without the search for its slot.
+        if (count == 0 && reach <= MaximumJoinedReach)
+        {
+          const Cell* joined[(2 * MaximumJoinedReach + 1) * (2 * MaximumJoinedReach + 1)];
+          float weights[(2 * MaximumJoinedReach + 1) * (2 * MaximumJoinedReach + 1)];
+          float depths[(2 * MaximumJoinedReach + 1) * (2 * MaximumJoinedReach + 1)];
+          int n = 0;
+          bool oneSurface = true;
+          float nearest = std::numeric_limits<float>::infinity();
+          float farthest = -nearest;
+          float threshold = nearest;
+          for (int dy = -reach; dy <= reach && oneSurface; ++dy)
+          {
+            const std::size_t row = static_cast<std::size_t>(y + dy + reach) * this->Width;
+            for (int dx = -reach; dx <= reach; ++dx)
+            {
+              const std::size_t cell = row + (x + dx + reach);
+              oneSurface = oneSurface && cellCounts[cell] <= 1;
+              if (cellCounts[cell] == 0)
+              {
+                continue;
+              }
+              const Cell& c = cells[cell * layers];
+              const float z = depthAt(c, dx, dy);
+              const float ox = dx + c.Offset[0];
+              const float oy = dy + c.Offset[1];
+              const float beta = 0.5f * (ox * ox + oy * oy) * c.InverseVariance;
+              if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]))
+              {
+                continue;
+              }
+              joined[n] = &c;
+              depths[n] = z;
+              weights[n++] =
+                static_cast<float>(InverseTwoPi) * exponential(beta) * c.InverseVariance;
+              nearest = std::min(nearest, z);
+              farthest = std::max(farthest, z);
+              threshold = std::min(threshold, c.Threshold);
+            }
+          }
+          if (oneSurface && farthest - nearest <= threshold)
+          {
+            if (n > 0)
+            {
+              pixelFragments[0] = Scaled(joined[0]->Sum, weights[0], depths[0]);
+              for (int i = 1; i < n; ++i)
+              {
+                AccumulateScaled(pixelFragments[0], joined[i]->Sum, weights[i], depths[i]);
+              }
+              count = 1;
+              written += n;
+            }
+            return;
+          }
+        }
         // The cells' nearest surfaces first.
         float deeper = std::numeric_limits<float>::infinity();
         for (int dy = -reach; dy <= reach; ++dy)
