@@ -13,6 +13,8 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <algorithm>
+
 vtkStandardNewMacro(vtkOpenGLImageDepthCompositor);
 
 namespace
@@ -47,8 +49,20 @@ vtkOpenGLImageDepthCompositor::~vtkOpenGLImageDepthCompositor() = default;
 void vtkOpenGLImageDepthCompositor::Draw(vtkRenderer* renderer, int width, int height,
   const std::uint8_t* rgba, const float* depth, Blending blending)
 {
+  const int whole[4] = { 0, 0, width - 1, height - 1 };
+  this->DrawRegion(renderer, width, height, rgba, depth, whole, blending);
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenGLImageDepthCompositor::DrawRegion(vtkRenderer* renderer, int width, int height,
+  const std::uint8_t* rgba, const float* depth, const int region[4], Blending blending)
+{
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
-  if (!window || width <= 0 || height <= 0)
+  const int x0 = std::max(region[0], 0);
+  const int y0 = std::max(region[1], 0);
+  const int x1 = std::min(region[2], width - 1);
+  const int y1 = std::min(region[3], height - 1);
+  if (!window || x0 > x1 || y0 > y1)
   {
     return;
   }
@@ -56,10 +70,22 @@ void vtkOpenGLImageDepthCompositor::Draw(vtkRenderer* renderer, int width, int h
   {
     splat::SetNearest(texture, window);
   }
-  this->ColorTexture->Create2DFromRaw(width, height, 4, VTK_UNSIGNED_CHAR,
-    const_cast<void*>(static_cast<const void*>(rgba)));
-  this->DepthTexture->Create2DFromRaw(width, height, 1, VTK_FLOAT,
-    const_cast<void*>(static_cast<const void*>(depth)));
+  // The region's rows are read out of the whole image's.
+  vtkOpenGLState* state = window->GetState();
+  state->vtkglPixelStorei(GL_UNPACK_ROW_LENGTH, width);
+  const std::size_t first = static_cast<std::size_t>(y0) * width + x0;
+  const int regionWidth = x1 - x0 + 1;
+  const int regionHeight = y1 - y0 + 1;
+  this->ColorTexture->Create2DFromRaw(regionWidth, regionHeight, 4, VTK_UNSIGNED_CHAR,
+    const_cast<void*>(static_cast<const void*>(rgba + 4 * first)));
+  this->DepthTexture->Create2DFromRaw(regionWidth, regionHeight, 1, VTK_FLOAT,
+    const_cast<void*>(static_cast<const void*>(depth + first)));
+  state->vtkglPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  // Drawn into the region's part of the renderer's viewport.
+  vtkOpenGLState::ScopedglViewport viewport(state);
+  int whole[4];
+  state->vtkglGetIntegerv(GL_VIEWPORT, whole);
+  state->vtkglViewport(whole[0] + x0, whole[1] + y0, regionWidth, regionHeight);
   this->DrawTextures(renderer, this->ColorTexture, this->DepthTexture, blending);
 }
 

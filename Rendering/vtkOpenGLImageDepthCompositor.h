@@ -54,6 +54,13 @@ public:
     const float* depth, Blending blending);
 
   /**
+   * Draw() of the pixels in `region` only (x0, y0, x1, y1, inclusive; nothing where x0 > x1 or
+   * y0 > y1), the image being transparent outside it: only they are uploaded and drawn.
+   */
+  void DrawRegion(vtkRenderer* renderer, int width, int height, const std::uint8_t* rgba,
+    const float* depth, const int region[4], Blending blending);
+
+  /**
    * Draws textures of the viewport's size: premultiplied RGBA and window-space depth (the
    * OpenGL backends' results, which stay on the GPU).
    */

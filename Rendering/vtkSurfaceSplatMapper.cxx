@@ -606,9 +606,9 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     }
     this->Rasterizer->SetSceneDepths(std::move(sceneDepths));
     this->Rasterizer->Render(surfels, view, lights, material);
-    this->Compositor->Draw(ren, view.Viewport.x, view.Viewport.y,
-      this->Rasterizer->GetColors().data(),
-      this->Rasterizer->GetDepths().data(), blending);
+    this->Compositor->DrawRegion(ren, view.Viewport.x, view.Viewport.y,
+      this->Rasterizer->GetColors().data(), this->Rasterizer->GetDepths().data(),
+      this->Rasterizer->GetCoveredRegion(), blending);
   }
 
   this->LastRenderTimeInMilliseconds =

@@ -970,6 +970,8 @@ void vtkSurfaceSplatRasterizer::Resolve()
   this->Depths.assign(pixels, 1.0f);
   const glm::dmat4& P = this->CurrentFrame.View.EyeToClip;
   const int layers = this->Layers;
+  // Per row, its first and last covered pixel.
+  std::vector<glm::ivec2> rowSpans(height, glm::ivec2(width, -1));
 
   vtkSMPTools::For(0, height,
     [&](vtkIdType rowBegin, vtkIdType rowEnd)
@@ -984,6 +986,7 @@ void vtkSurfaceSplatRasterizer::Resolve()
           {
             continue;
           }
+          rowSpans[y] = glm::ivec2(std::min(rowSpans[y].x, x), x);
           // Blend of the pixel's fragments (premultiplied colors, eq. 12), front to back until
           // what lies behind can no longer show.
           const Fragment* fragments = &this->Fragments[pixel * layers];
@@ -1007,6 +1010,20 @@ void vtkSurfaceSplatRasterizer::Resolve()
         }
       }
     });
+  int* region = this->CoveredRegion;
+  region[0] = width;
+  region[1] = height;
+  region[2] = region[3] = -1;
+  for (int y = 0; y < height; ++y)
+  {
+    if (rowSpans[y].x <= rowSpans[y].y)
+    {
+      region[0] = std::min(region[0], rowSpans[y].x);
+      region[2] = std::max(region[2], rowSpans[y].y);
+      region[1] = std::min(region[1], y);
+      region[3] = y;
+    }
+  }
 }
 
 //------------------------------------------------------------------------------

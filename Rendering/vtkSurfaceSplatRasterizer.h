@@ -218,6 +218,12 @@ public:
   const std::vector<float>& GetDepths() const { return this->Depths; }
 
   /**
+   * The smallest box of pixels that holds every pixel the last frame covers, as x0, y0, x1, y1
+   * (inclusive; x0 > x1 when it covers none): outside it the image is transparent.
+   */
+  const int* GetCoveredRegion() const { return this->CoveredRegion; }
+
+  /**
    * After Splat(): the summed kernel weights of each pixel's nearest surface, before
    * normalization.
    */
@@ -306,6 +312,7 @@ protected:
   std::vector<float> SceneDepths;
   std::vector<std::uint8_t> Colors;
   std::vector<float> Depths;
+  int CoveredRegion[4] = { 0, 0, -1, -1 };
 
 private:
   vtkSurfaceSplatRasterizer(const vtkSurfaceSplatRasterizer&) = delete;

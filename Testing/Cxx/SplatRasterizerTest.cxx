@@ -354,6 +354,8 @@ TEST(SurfaceSplatRasterizer, DiskEdgeHasPartialCoverageOnly)
     rasterizer->Render(disk.View(), FrontoParallelCamera(distance, size), {}, Unlit());
     const std::vector<std::uint8_t>& rgba = rasterizer->GetColors();
     int partialInside = 0, partialAtEdge = 0;
+    // The box of the covered pixels, which the compositor alone uploads and draws.
+    int covered[4] = { size, size, -1, -1 };
     for (int y = 0; y < size; ++y)
     {
       for (int x = 0; x < size; ++x)
@@ -363,8 +365,20 @@ TEST(SurfaceSplatRasterizer, DiskEdgeHasPartialCoverageOnly)
         const bool partial = a > 0 && a < 255;
         partialInside += partial && r < 0.3 - 0.02;
         partialAtEdge += partial && r >= 0.3 - 0.02;
+        if (a > 0)
+        {
+          covered[0] = std::min(covered[0], x);
+          covered[1] = std::min(covered[1], y);
+          covered[2] = std::max(covered[2], x);
+          covered[3] = std::max(covered[3], y);
+        }
       }
     }
+    const int* region = rasterizer->GetCoveredRegion();
+    EXPECT_TRUE(std::equal(covered, covered + 4, region))
+      << region[0] << " " << region[1] << " " << region[2] << " " << region[3];
+    // The disk's diameter, widened on each side by its splats' radius and the low-pass filter.
+    EXPECT_NEAR(region[2] - region[0] + 1, 0.62 * pixelsPerUnit + 2.0, 3.0);
     EXPECT_EQ(partialInside, 0) << (antialiasing ? "with" : "without") << " antialiasing";
     if (antialiasing)
     {
