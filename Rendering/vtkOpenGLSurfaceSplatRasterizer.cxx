@@ -13,11 +13,14 @@
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
+#include "vtkTransformFeedback.h"
 #include "vtk_glew.h"
 
 #include "vtkSurfaceSplatFS.h"
 #include "vtkSurfaceSplatResolveFS.h"
+#include "vtkSurfaceSplatSetupVS.h"
 #include "vtkSurfaceSplatVS.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -32,9 +35,38 @@ vtkStandardNewMacro(vtkOpenGLSurfaceSplatRasterizer);
 
 namespace
 {
-// Floats per splat in the attribute buffer: position, two axes, normal (3 each), RGBA, and the
-// principal curvatures of differential points (0 for surfels).
-constexpr int SplatStride = 18;
+// A vertex attribute of floats, in a buffer of such attributes packed one after the other.
+struct Attribute
+{
+  const char* Name;
+  int Size;
+};
+
+template <std::size_t N>
+constexpr int Floats(const std::array<Attribute, N>& attributes)
+{
+  int floats = 0;
+  for (const Attribute& attribute : attributes)
+  {
+    floats += attribute.Size;
+  }
+  return floats;
+}
+
+// The surfels' attributes: position, two axes, normal, RGBA, and the principal curvatures of
+// differential points (0 for surfels).
+constexpr std::array<Attribute, 6> SurfelFields = { { { "position", 3 }, { "axis0", 3 },
+  { "axis1", 3 }, { "normal", 3 }, { "color", 4 }, { "curvature", 2 } } };
+constexpr int SplatStride = Floats(SurfelFields);
+// The splat's record: what the setup pass's vertex shader writes per splat (its outputs, in
+// this order, captured interleaved) and the strip pass's vertex shader reads per instance
+// (vtkSurfaceSplatSetupVS.glsl says what each holds).
+constexpr std::array<Attribute, 8> RecordFields = { { { "recordBox", 4 }, { "recordCenter", 4 },
+  { "recordConic", 4 }, { "recordPoint", 4 }, { "recordNormal", 4 }, { "recordAxis0", 4 },
+  { "recordAxis1", 4 }, { "recordColor", 4 } } };
+constexpr std::size_t RecordBytes = Floats(RecordFields) * sizeof(float);
+// The setup pass draws with the rasterizer off, but a program needs a fragment shader.
+constexpr const char* SetupFS = "//VTK::System::Dec\nvoid main()\n{\n}\n";
 constexpr int ApproximateFilterMode = 3;
 // The splatting shader's passes (vtkSurfaceSplatFS.glsl).
 enum SplatPass
@@ -45,15 +77,82 @@ enum SplatPass
 };
 
 using splat::SetNearest;
+
+// Binds `fields`, packed in this order in each element of `buffer` (a vertex, or with a divisor
+// of 1 an instance), to the attributes of the same names of `program` (current), in the bound
+// vertex array `array`.
+template <std::size_t N>
+void AddAttributes(vtkOpenGLVertexArrayObject* array, vtkShaderProgram* program,
+  vtkOpenGLBufferObject* buffer, const std::array<Attribute, N>& fields, int divisor)
+{
+  const std::size_t stride = Floats(fields) * sizeof(float);
+  int offset = 0;
+  for (const Attribute& field : fields)
+  {
+    array->AddAttributeArrayWithDivisor(
+      program, buffer, field.Name, offset, stride, VTK_FLOAT, field.Size, false, divisor, false);
+    offset += field.Size * static_cast<int>(sizeof(float));
+  }
+}
+
+// The record's fields as the varyings that the setup program captures, declared before it
+// links. One object per thread: the window's shader cache relinks a program readied with
+// another one (rasterizers sharing a window share its programs), and linking writes to it
+// (windows may render in threads of their own).
+vtkTransformFeedback* RecordCapture()
+{
+  thread_local vtkSmartPointer<vtkTransformFeedback> capture;
+  if (!capture)
+  {
+    capture = vtkSmartPointer<vtkTransformFeedback>::New();
+    for (const Attribute& field : RecordFields)
+    {
+      // (The role only sizes the varying: four floats.)
+      capture->AddVarying(vtkTransformFeedback::Color_RGBA_F, field.Name);
+    }
+  }
+  return capture;
+}
+
+// A vertex array with the attributes of one program.
+struct ProgramArray
+{
+  vtkNew<vtkOpenGLVertexArrayObject> Array;
+  vtkShaderProgram* Program = nullptr; // the program its attributes are bound to
+  bool PointIds = false;               // whether they include the point ids
+
+  // Binds the array; true when it was emptied for `program` (current) or the point ids, and
+  // needs its attributes added.
+  bool Bind(vtkShaderProgram* program, bool pointIds)
+  {
+    const bool changed = program != this->Program || pointIds != this->PointIds;
+    if (changed)
+    {
+      // (This releases the array: bind it after.)
+      this->Array->ShaderProgramChanged();
+      this->Program = program;
+      this->PointIds = pointIds;
+    }
+    this->Array->Bind();
+    return changed;
+  }
+
+  void ReleaseGraphicsResources()
+  {
+    this->Array->ReleaseGraphicsResources();
+    this->Program = nullptr;
+  }
+};
 }
 
 struct vtkOpenGLSurfaceSplatRasterizer::Internals
 {
   vtkNew<vtkOpenGLBufferObject> Attributes;
+  vtkNew<vtkOpenGLBufferObject> Records; // the setup pass's output, the strip passes' input
   vtkNew<vtkOpenGLBufferObject> PointIds;
-  vtkNew<vtkOpenGLVertexArrayObject> Array;
-  vtkShaderProgram* ArrayProgram = nullptr; // the program the array's attributes are bound to
-  bool ArrayHasPointIds = false;
+  ProgramArray SetupArray; // the surfels, a vertex each
+  ProgramArray StripArray; // the records (and point ids), an instance each
+  GLsizei RecordCapacity = 0;
   vtkMTimeType Version = 0;
   vtkMTimeType PointIdsVersion = 0;
   glm::dvec3 Shift{ 0.0 };
@@ -75,11 +174,15 @@ struct vtkOpenGLSurfaceSplatRasterizer::Internals
   int Width = 0;
   int Height = 0;
 
-  vtkShaderProgram* ReadySplatProgram(vtkOpenGLRenderWindow* window, bool withPointIds);
+  // Runs the setup pass (each splat's record), then makes the strip program current, its
+  // vertex array bound and the uniforms of both set. Null when a program did not compile.
+  vtkShaderProgram* ReadySplatProgram(vtkOpenGLRenderWindow* window,
+    const vtkSurfaceSplatRasterizer::Camera& camera, vtkSurfaceSplatRasterizer* settings,
+    bool approximateFilter, bool cullBackFaces, bool withPointIds);
   void Allocate(vtkOpenGLRenderWindow* window, int width, int height);
   void SetViewUniforms(vtkShaderProgram* program, const vtkSurfaceSplatRasterizer::Camera& camera);
-  void SetSplatUniforms(vtkShaderProgram* program, vtkSurfaceSplatRasterizer* settings,
-    bool approximateFilter, bool cullBackFaces);
+  void SetSplatUniforms(vtkShaderProgram* program, const vtkSurfaceSplatRasterizer::Camera& camera,
+    vtkSurfaceSplatRasterizer* settings, bool approximateFilter, bool cullBackFaces);
   void ResolveLayer(vtkOpenGLRenderWindow* window, const vtkSurfaceSplatRasterizer::Camera& camera,
     const std::vector<splat::Light>& lights, const splat::Material& material,
     vtkSurfaceSplatRasterizer* settings, int layer);
@@ -88,38 +191,51 @@ struct vtkOpenGLSurfaceSplatRasterizer::Internals
 
 //------------------------------------------------------------------------------
 vtkShaderProgram* vtkOpenGLSurfaceSplatRasterizer::Internals::ReadySplatProgram(
-  vtkOpenGLRenderWindow* window, bool withPointIds)
+  vtkOpenGLRenderWindow* window, const vtkSurfaceSplatRasterizer::Camera& camera,
+  vtkSurfaceSplatRasterizer* settings, bool approximateFilter, bool cullBackFaces,
+  bool withPointIds)
 {
-  vtkShaderProgram* program =
-    window->GetShaderCache()->ReadyShaderProgram(vtkSurfaceSplatVS, vtkSurfaceSplatFS, "");
+  // The setup pass: each splat's record, once for all the passes that draw it.
+  vtkOpenGLShaderCache* cache = window->GetShaderCache();
+  vtkShaderProgram* setup =
+    cache->ReadyShaderProgram(vtkSurfaceSplatSetupVS, SetupFS, "", RecordCapture());
+  if (!setup || !setup->GetCompiled())
+  {
+    return nullptr;
+  }
+  if (this->SetupArray.Bind(setup, false))
+  {
+    AddAttributes(this->SetupArray.Array, setup, this->Attributes, SurfelFields, 0);
+  }
+  this->SetSplatUniforms(setup, camera, settings, approximateFilter, cullBackFaces);
+  {
+    vtkOpenGLState* state = window->GetState();
+    vtkOpenGLState::ScopedglEnableDisable discard(state, GL_RASTERIZER_DISCARD);
+    state->vtkglEnable(GL_RASTERIZER_DISCARD);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, this->Records->GetHandle());
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, this->Count);
+    glEndTransformFeedback();
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+  }
+  this->SetupArray.Array->Release();
+
+  // The strips, reading the records.
+  vtkShaderProgram* program = cache->ReadyShaderProgram(vtkSurfaceSplatVS, vtkSurfaceSplatFS, "");
   if (!program || !program->GetCompiled())
   {
     return nullptr;
   }
-  if (program != this->ArrayProgram || withPointIds != this->ArrayHasPointIds)
+  if (this->StripArray.Bind(program, withPointIds))
   {
-    // (This releases the array: bind it after.)
-    this->Array->ShaderProgramChanged();
-    this->Array->Bind();
-    const std::size_t stride = SplatStride * sizeof(float);
-    const std::array<std::pair<const char*, int>, 6> attributes = { { { "position", 3 },
-      { "axis0", 3 }, { "axis1", 3 }, { "normal", 3 }, { "color", 4 }, { "curvature", 2 } } };
-    int offset = 0;
-    for (const auto& attribute : attributes)
-    {
-      this->Array->AddAttributeArrayWithDivisor(program, this->Attributes, attribute.first,
-        offset * sizeof(float), stride, VTK_FLOAT, attribute.second, false, 1, false);
-      offset += attribute.second;
-    }
+    AddAttributes(this->StripArray.Array, program, this->Records, RecordFields, 1);
     if (withPointIds)
     {
-      this->Array->AddAttributeArrayWithDivisor(program, this->PointIds, "pointId", 0,
-        2 * sizeof(float), VTK_FLOAT, 2, false, 1, false);
+      this->StripArray.Array->AddAttributeArrayWithDivisor(
+        program, this->PointIds, "pointId", 0, 2 * sizeof(float), VTK_FLOAT, 2, false, 1, false);
     }
-    this->ArrayProgram = program;
-    this->ArrayHasPointIds = withPointIds;
   }
-  this->Array->Bind();
+  this->SetSplatUniforms(program, camera, settings, approximateFilter, cullBackFaces);
   return program;
 }
 
@@ -200,8 +316,10 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::SetViewUniforms(
 
 //------------------------------------------------------------------------------
 void vtkOpenGLSurfaceSplatRasterizer::Internals::SetSplatUniforms(vtkShaderProgram* program,
-  vtkSurfaceSplatRasterizer* settings, bool approximateFilter, bool cullBackFaces)
+  const vtkSurfaceSplatRasterizer::Camera& camera, vtkSurfaceSplatRasterizer* settings,
+  bool approximateFilter, bool cullBackFaces)
 {
+  this->SetViewUniforms(program, camera);
   program->SetUniformf("cutoff", static_cast<float>(settings->GetCutoff()));
   program->SetUniformi("filterMode",
     approximateFilter ? ApproximateFilterMode : static_cast<int>(settings->GetFilter()));
@@ -252,6 +370,16 @@ void vtkOpenGLSurfaceSplatRasterizer::SetSurfels(
   internal.Attributes->Upload(data, vtkOpenGLBufferObject::ArrayBuffer);
   internal.Count = static_cast<GLsizei>(n);
   internal.Version = version;
+  if (internal.Count > internal.RecordCapacity)
+  {
+    // Storage only: the setup pass fills it every frame (VTK 9.1's buffer object allocates
+    // only with an upload).
+    internal.Records->GenerateBuffer(vtkOpenGLBufferObject::ArrayBuffer);
+    internal.Records->Bind();
+    glBufferData(
+      GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(n * RecordBytes), nullptr, GL_DYNAMIC_COPY);
+    internal.RecordCapacity = internal.Count;
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -297,17 +425,15 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
   state->vtkglClear(GL_COLOR_BUFFER_BIT);
   state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
 
-  vtkShaderProgram* program = internal.ReadySplatProgram(window, false);
+  const bool translucent = internal.Translucent;
+  vtkShaderProgram* program = internal.ReadySplatProgram(window, camera, settings,
+    this->ApproximateFilter, settings->GetBackfaceCulling() && !translucent, false);
   if (!program)
   {
     vtkErrorMacro("The splatting shaders did not compile.");
     state->PopFramebufferBindings();
     return;
   }
-  const bool translucent = internal.Translucent;
-  internal.SetViewUniforms(program, camera);
-  internal.SetSplatUniforms(
-    program, settings, this->ApproximateFilter, settings->GetBackfaceCulling() && !translucent);
   program->SetUniform2f("viewportOrigin", std::array<float, 2>{ 0.0f, 0.0f }.data());
   const bool sceneTest =
     translucent && sceneDepths.size() == static_cast<std::size_t>(width) * height;
@@ -331,7 +457,7 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     vtkTextureObject* depth = internal.VisibilityDepth[layer % 2];
     vtkTextureObject* previous = internal.VisibilityDepth[(layer + 1) % 2];
     window->GetShaderCache()->ReadyShaderProgram(program);
-    internal.Array->Bind();
+    internal.StripArray.Array->Bind();
     internal.SplatFramebuffer->Bind();
     internal.SplatFramebuffer->AddDepthAttachment(depth);
     internal.SplatFramebuffer->ActivateDrawBuffers(3);
@@ -373,7 +499,7 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
     program->SetUniformi("splatPass", AttributePass);
     internal.Draw();
-    internal.Array->Release();
+    internal.StripArray.Array->Release();
     if (layer > 0)
     {
       previous->Deactivate();
@@ -473,7 +599,8 @@ void vtkOpenGLSurfaceSplatRasterizer::RenderSelection(vtkRenderer* renderer,
     internal.PointIds->Upload(ids, vtkOpenGLBufferObject::ArrayBuffer);
     internal.PointIdsVersion = internal.Version;
   }
-  vtkShaderProgram* program = internal.ReadySplatProgram(window, true);
+  vtkShaderProgram* program = internal.ReadySplatProgram(
+    window, camera, settings, this->ApproximateFilter, settings->GetBackfaceCulling(), true);
   if (!program)
   {
     vtkErrorMacro("The splatting shaders did not compile.");
@@ -481,9 +608,6 @@ void vtkOpenGLSurfaceSplatRasterizer::RenderSelection(vtkRenderer* renderer,
   }
   int width, height, originX, originY;
   renderer->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
-  internal.SetViewUniforms(program, camera);
-  internal.SetSplatUniforms(
-    program, settings, this->ApproximateFilter, settings->GetBackfaceCulling());
   const float origin[2] = { static_cast<float>(originX), static_cast<float>(originY) };
   program->SetUniform2f("viewportOrigin", origin);
   program->SetUniformi("peel", 0);
@@ -516,7 +640,7 @@ void vtkOpenGLSurfaceSplatRasterizer::RenderSelection(vtkRenderer* renderer,
   state->vtkglDepthMask(GL_TRUE);
   state->vtkglDepthFunc(GL_LEQUAL);
   internal.Draw();
-  internal.Array->Release();
+  internal.StripArray.Array->Release();
 }
 
 //------------------------------------------------------------------------------
@@ -524,9 +648,12 @@ void vtkOpenGLSurfaceSplatRasterizer::ReleaseGraphicsResources(vtkWindow* window
 {
   Internals& internal = *this->Internal;
   internal.Attributes->ReleaseGraphicsResources();
+  internal.Records->ReleaseGraphicsResources();
   internal.PointIds->ReleaseGraphicsResources();
-  internal.Array->ReleaseGraphicsResources();
-  internal.ArrayProgram = nullptr;
+  // The programs are the window's (its shader cache releases them).
+  internal.SetupArray.ReleaseGraphicsResources();
+  internal.StripArray.ReleaseGraphicsResources();
+  internal.RecordCapacity = 0;
   internal.Version = internal.PointIdsVersion = 0;
   for (vtkTextureObject* texture :
     { internal.VisibilityDepth[0].Get(), internal.VisibilityDepth[1].Get(),

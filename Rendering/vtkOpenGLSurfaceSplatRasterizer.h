@@ -5,10 +5,15 @@
  *
  * Renders the same surfels, camera and settings as vtkSurfaceSplatRasterizer, on the GPU, in
  * the render window's own context (An and Zhou's two-pass splatting with Zwicker's exact kernel):
+ * - setup, once per render (and per selection pass): a vertex shader sets each surfel's kernel
+ *   up (SplatSurfelKernel.h in GLSL: projection, resampling kernel, bounding box, culling), one
+ *   point per surfel drawn with the rasterizer off, and transform feedback writes a record per
+ *   splat into a buffer; nothing is computed per splat on the CPU, and the surfels are uploaded
+ *   once per input change;
  * - every surfel is one instance of a four-vertex triangle strip covering the tight bounding box
- *   of its kernel's cutoff ellipse; the vertex shader sets the kernel up (SplatSurfelKernel.h in
- *   GLSL), so nothing is computed per splat on the CPU and the buffers are uploaded once per
- *   input change;
+ *   of its kernel's cutoff ellipse: the strip's vertex shader reads the box and the rest of the
+ *   kernel from the splat's record (a culled splat's strip draws nothing), so that all the
+ *   passes below share one setup;
  * - pass 1, visibility: each fragment intersects its pixel's view ray with the splat's tangent
  *   plane, drops what lies outside the cutoff, and writes the linear eye depth of the
  *   intersection plus the splat's depth threshold (DepthThreshold times its radius);

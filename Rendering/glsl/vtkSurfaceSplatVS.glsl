@@ -1,30 +1,22 @@
 //VTK::System::Dec
 // SPDX-License-Identifier: BSD-3-Clause
 // Surface splats as instanced quads: one instance per surfel, four vertices (a triangle strip)
-// covering the tight bounding box of its resampling kernel's cutoff ellipse, or of a differential
-// point's rectangle. The per-splat setup mirrors SplatSurfelKernel.h (ProjectSurfel,
-// Foreshortening, MakeResamplingKernel) and vtkSurfaceSplatRasterizer.cxx line by line.
+// covering the pixel box of the record that vtkSurfaceSplatSetupVS.glsl wrote for the splat
+// this frame (the tight bounding box of its resampling kernel's cutoff ellipse, or of a
+// differential point's rectangle); the record goes on to the fragment shader unchanged.
 
-in vec3 position; // relative to the shift folded into modelToEye
-in vec3 axis0;
-in vec3 axis1;
-in vec3 normal;
-in vec4 color; // rgb, opacity
-in vec2 curvature; // a differential point's principal curvatures along axis0 and axis1
+// The splat's record (instanced; vtkSurfaceSplatSetupVS.glsl says what each holds).
+in vec4 recordBox;
+in vec4 recordCenter;
+in vec4 recordConic;
+in vec4 recordPoint;
+in vec4 recordNormal;
+in vec4 recordAxis0;
+in vec4 recordAxis1;
+in vec4 recordColor;
 in vec2 pointId; // the input point's id in two 24-bit halves; selection passes only
 
-uniform mat4 modelToEye;
-uniform mat3 normalToEye;
-uniform mat4 eyeToClip;
 uniform vec2 viewportSize;
-uniform float nearDepth;
-uniform float farDepth;
-uniform float cutoff;
-uniform int filterMode; // 0 EWA, 1 circular, 2 unfiltered, 3 approximate
-uniform int differential; // axes are the rectangles' half-widths along the principal directions
-uniform int perspective;
-uniform int cullBackFaces;
-uniform float depthThreshold;
 
 flat out vec2 splatCenter;
 flat out vec3 splatConic; // 1/2 M^-1 as (xx, 2 xy, yy): beta = dx^2 xx + dx dy xy + dy^2 yy
@@ -39,130 +31,28 @@ flat out float splatThreshold;
 flat out vec4 splatColor;
 flat out vec2 splatPointId;
 
-const float InverseTwoPi = 0.15915494309189533577;
-const float EdgeOnForeshortening = 1e-3;
-const float UnfilteredMinimumVariance = 1e-6;
-
-void cull()
-{
-  // Outside the clip volume: the quad yields no fragment.
-  gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
-}
-
 void main()
 {
-  vec3 p = (modelToEye * vec4(position, 1.0)).xyz;
-  vec3 a0 = mat3(modelToEye) * axis0;
-  vec3 a1 = mat3(modelToEye) * axis1;
-  bool rectangle = differential != 0 && filterMode == 2;
-  float footprint = differential != 0 && !rectangle ? sqrt(2.0) : 1.0;
-  // Culled when the whole splat lies outside the depth range: a large one reaches past the
-  // near or far plane from a center outside it (its fragments are clipped there).
-  float reach = footprint * max(sqrt(cutoff), 1.0) * (abs(a0.z) + abs(a1.z));
-  if (!(-p.z + reach >= nearDepth && -p.z - reach <= farDepth))
+  vec2 lo = recordBox.xy;
+  vec2 hi = recordBox.zw;
+  if (!(lo.x <= hi.x))
   {
-    cull();
+    // A culled splat (an empty box): outside the clip volume, the quad yields no fragment.
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
     return;
   }
 
-  // ProjectSurfel: center and Jacobian of the projective map, in pixels.
-  vec4 c = eyeToClip * vec4(p, 1.0);
-  if (!(c.w > 0.0))
-  {
-    cull();
-    return;
-  }
-  vec2 ndc = c.xy / c.w;
-  vec2 halfSize = 0.5 * viewportSize;
-  vec2 center = (ndc + 1.0) * halfSize;
-  // A filtered differential point's Gaussian passes through its rectangle's corners, with the
-  // rectangle's area as its mass (footprint); unfiltered, the rectangle itself is drawn.
-  vec4 d0 = eyeToClip * vec4(footprint * a0, 0.0);
-  vec4 d1 = eyeToClip * vec4(footprint * a1, 0.0);
-  vec2 j0 = (d0.xy - ndc * d0.w) / c.w * halfSize;
-  vec2 j1 = (d1.xy - ndc * d1.w) / c.w * halfSize;
-
-  vec3 n = normalize(normalToEye * normal);
-  vec3 view = perspective != 0 ? p : vec3(0.0, 0.0, -1.0);
-  bool backFacing = dot(n, view) > 0.0;
-  if (backFacing && cullBackFaces != 0)
-  {
-    cull();
-    return;
-  }
-  // Foreshortening: edge-on splats are negligible next to their neighbors.
-  float detJ = j0.x * j1.y - j1.x * j0.y;
-  float squaredAxes = dot(j0, j0) + dot(j1, j1);
-  if (!(2.0 * abs(detJ) >= EdgeOnForeshortening * squaredAxes))
-  {
-    cull();
-    return;
-  }
-
-  // MakeResamplingKernel: M = J Vr J^T (+ I), Vr = 1/2 I.
-  float mxx = 0.5 * (j0.x * j0.x + j1.x * j1.x);
-  float mxy = 0.5 * (j0.x * j0.y + j1.x * j1.y);
-  float myy = 0.5 * (j0.y * j0.y + j1.y * j1.y);
-  if (filterMode == 2)
-  {
-    mxx += UnfilteredMinimumVariance;
-    myy += UnfilteredMinimumVariance;
-  }
-  else
-  {
-    mxx += 1.0;
-    myy += 1.0;
-  }
-  if (filterMode == 1)
-  {
-    float mean = 0.5 * (mxx + myy);
-    float halfDifference = 0.5 * (mxx - myy);
-    mxx = myy = mean + sqrt(halfDifference * halfDifference + mxy * mxy);
-    mxy = 0.0;
-  }
-  float detM = mxx * myy - mxy * mxy;
-  // The approximate filter's screen-space part is the unit low-pass alone; its box is EWA's,
-  // which holds both the object-space ellipse and the low-pass disk.
-  splatConic = filterMode == 3 ? vec3(0.5, 0.0, 0.5)
-                               : vec3(0.5 * myy, -mxy, 0.5 * mxx) / detM;
-  splatAmplitude = filterMode == 3 ? 1.0 : abs(detJ) * InverseTwoPi / sqrt(detM);
-  splatAmplitude *= footprint * footprint;
-  vec2 lo = center - sqrt(2.0 * cutoff * vec2(mxx, myy));
-  vec2 hi = 2.0 * center - lo;
-  if (rectangle)
-  {
-    // The box of the corners' exact projections.
-    lo = vec2(1e30);
-    hi = vec2(-1e30);
-    for (int k = 0; k < 4; ++k)
-    {
-      vec3 corner = p + (float(k & 1) * 2.0 - 1.0) * a0 + (float(k >> 1) * 2.0 - 1.0) * a1;
-      vec4 q = eyeToClip * vec4(corner, 1.0);
-      if (!(q.w > 0.0))
-      {
-        cull();
-        return;
-      }
-      vec2 cornerPixel = (q.xy / q.w + 1.0) * halfSize;
-      lo = min(lo, cornerPixel);
-      hi = max(hi, cornerPixel);
-    }
-  }
-  if (hi.x < 0.0 || hi.y < 0.0 || lo.x > viewportSize.x || lo.y > viewportSize.y)
-  {
-    cull();
-    return;
-  }
-
-  splatCenter = center;
-  splatPoint = p;
-  splatNormal = backFacing ? -n : n; // two-sided lighting
-  splatAxis0 = a0;
-  splatAxis1 = a1;
-  splatExtent = vec2(length(axis0), length(axis1));
-  splatCurvature = backFacing ? -curvature : curvature;
-  splatThreshold = depthThreshold * max(length(a0), length(a1));
-  splatColor = color;
+  splatCenter = recordCenter.xy;
+  splatCurvature = recordCenter.zw;
+  splatConic = recordConic.xyz;
+  splatAmplitude = recordConic.w;
+  splatPoint = recordPoint.xyz;
+  splatThreshold = recordPoint.w;
+  splatNormal = recordNormal.xyz;
+  splatAxis0 = recordAxis0.xyz;
+  splatAxis1 = recordAxis1.xyz;
+  splatExtent = vec2(recordAxis0.w, recordAxis1.w);
+  splatColor = recordColor;
   splatPointId = pointId;
 
   // The corner of this vertex, with half a pixel of margin around the box.
