@@ -331,7 +331,7 @@ inline std::string MeasureDifferentialPoints(vtkRenderWindow* window, vtkRendere
     const std::string sameMsText = bracketed ? Fixed(sameMs, 1) : "";
     const std::string primitiveRatio = bracketed ? Fixed(same / r.Primitives, 2) : "";
     const std::string timeRatio = bracketed ? Fixed(sameMs / r.Milliseconds, 2) : "";
-    csv << r.Series << ",\"" << r.Source << "\"," << r.Primitives << ","
+    csv << "\"" << r.Series << "\",\"" << r.Source << "\"," << r.Primitives << ","
         << Fixed(r.BytesPerPrimitive, 0) << "," << Fixed(r.MakeSeconds, 3) << ","
         << Fixed(r.Milliseconds, 2) << "," << Fixed(r.Rmse, 5) << "," << sameText << ","
         << sameMsText << "," << primitiveRatio << "," << timeRatio << "," << r.Image << "\n";
