@@ -200,14 +200,26 @@ vtkIdType MinifiedSplatCells::Gather(SurfaceFragment* fragments, std::uint8_t* c
         std::uint8_t& count = counts[pixel];
         // One cell's surface, dx, dy pixels away, at depth z; left out behind a fully covered
         // opaque front fragment by more than its z threshold, where it could not show.
-        auto add = [&](const Cell& c, int dx, int dy, float z)
+        // The weight of a cell's surface dx, dy pixels away, at depth z: false where it lies
+        // beyond the cutoff or behind the scene.
+        auto weightOf = [&](const Cell& c, int dx, int dy, float z, float& w)
         {
           const float ox = dx + c.Offset[0];
           const float oy = dy + c.Offset[1];
           const float beta = 0.5f * (ox * ox + oy * oy) * c.InverseVariance;
-          if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]) ||
-            (count > 0 && z > pixelFragments[0].Depth + c.Threshold &&
-              FullyCoveredOpaque(pixelFragments[0], full)))
+          if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]))
+          {
+            return false;
+          }
+          w = static_cast<float>(InverseTwoPi) * exponential(beta) * c.InverseVariance;
+          return true;
+        };
+        auto add = [&](const Cell& c, int dx, int dy, float z)
+        {
+          float w;
+          if ((count > 0 && z > pixelFragments[0].Depth + c.Threshold &&
+                FullyCoveredOpaque(pixelFragments[0], full)) ||
+            !weightOf(c, dx, dy, z, w))
           {
             return;
           }
@@ -217,8 +229,6 @@ vtkIdType MinifiedSplatCells::Gather(SurfaceFragment* fragments, std::uint8_t* c
           {
             return;
           }
-          const float w =
-            static_cast<float>(InverseTwoPi) * exponential(beta) * c.InverseVariance;
           if (inserted)
           {
             pixelFragments[i] = Scaled(c.Sum, w, z);
@@ -258,17 +268,12 @@ vtkIdType MinifiedSplatCells::Gather(SurfaceFragment* fragments, std::uint8_t* c
               }
               const Cell& c = cells[cell * layers];
               const float z = depthAt(c, dx, dy);
-              const float ox = dx + c.Offset[0];
-              const float oy = dy + c.Offset[1];
-              const float beta = 0.5f * (ox * ox + oy * oy) * c.InverseVariance;
-              if (!(beta < cutoff) || (sceneDepths && z > sceneDepths[pixel]))
+              if (!weightOf(c, dx, dy, z, weights[n]))
               {
                 continue;
               }
               joined[n] = &c;
-              depths[n] = z;
-              weights[n++] =
-                static_cast<float>(InverseTwoPi) * exponential(beta) * c.InverseVariance;
+              depths[n++] = z;
               nearest = std::min(nearest, z);
               farthest = std::max(farthest, z);
               threshold = std::min(threshold, c.Threshold);
