@@ -408,9 +408,11 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   backRegions.clear();
   this->MergedCount =
     hierarchy ? hierarchy->Select(camera, this->MinifiedVariance, items, backRegions) : 0;
-  if (hierarchy && items.empty())
+  // Where it merges nothing and leaves no region to be found hidden (or the input is
+  // degenerate), its selection is the surfels themselves: they are drawn in their own order.
+  if (hierarchy && (items.empty() || (this->MergedCount == 0 && backRegions.empty())))
   {
-    hierarchy = nullptr; // degenerate input: level 0 only
+    hierarchy = nullptr;
   }
   const Surfels nodes = hierarchy ? hierarchy->GetNodes() : Surfels();
   const float* massScales = hierarchy ? hierarchy->GetMassScales() : nullptr;
