@@ -2,7 +2,8 @@
 /**
  * @file SplatFloat8.h
  * @brief Eight floats as one value, for the short per-kernel loops of
- * splat::VolumeLayerCompositor::AddFactored: one group of lanes per row of a footprint.
+ * splat::VolumeLayerCompositor: one group of lanes per row of a footprint, and the layer's
+ * opacities eight pixels at a time.
  *
  * Written as loops over eight floats, GCC vectorizes those loops only partly (a vector of four,
  * then a scalar remainder with a scalar exponential each) or unrolls them into scalar code. With
@@ -53,9 +54,17 @@ struct Float8
   {
     return Float8(a.V + b.V);
   }
+  SPLAT_FLOAT8 friend Float8 operator-(const Float8& a, const Float8& b)
+  {
+    return Float8(a.V - b.V);
+  }
   SPLAT_FLOAT8 friend Float8 operator*(const Float8& a, const Float8& b)
   {
     return Float8(a.V * b.V);
+  }
+  SPLAT_FLOAT8 friend Float8 operator/(const Float8& a, const Float8& b)
+  {
+    return Float8(a.V / b.V);
   }
 
   /// Per lane: a where the lane of `less` is below the one of `than`, b elsewhere.
@@ -122,11 +131,27 @@ struct Float8
     }
     return a;
   }
+  friend Float8 operator-(Float8 a, Float8 b)
+  {
+    for (int i = 0; i < 8; ++i)
+    {
+      a.V[i] -= b.V[i];
+    }
+    return a;
+  }
   friend Float8 operator*(Float8 a, Float8 b)
   {
     for (int i = 0; i < 8; ++i)
     {
       a.V[i] *= b.V[i];
+    }
+    return a;
+  }
+  friend Float8 operator/(Float8 a, Float8 b)
+  {
+    for (int i = 0; i < 8; ++i)
+    {
+      a.V[i] /= b.V[i];
     }
     return a;
   }

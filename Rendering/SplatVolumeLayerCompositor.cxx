@@ -25,6 +25,7 @@ VolumeLayerCompositor::VolumeLayerCompositor(int width, int rowBegin, int rowEnd
   , PeakOpacity(peakOpacity)
   , Stride(width + Lanes)
   , Spans(rowEnd - rowBegin + 1, glm::ivec2(std::numeric_limits<int>::max(), -1))
+  , LayerRows(std::numeric_limits<int>::max(), -1)
   , OpenPixels((width + Lanes - 1) / Lanes, 0)
 {
   const std::size_t size = static_cast<std::size_t>(rowEnd - rowBegin + 1) * this->Stride;
@@ -56,17 +57,13 @@ void VolumeLayerCompositor::Begin(const float* weights, bool ascending, const gl
 }
 
 //------------------------------------------------------------------------------
-SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
+template <typename Visit>
+SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::ForEachGroup(const ScreenKernel& s, Visit&& visit)
 {
-  if (!this->Reaches(s))
-  {
-    return;
-  }
   const int y0 = std::max(s.Y0, this->RowBegin);
   const int y1 = std::min(s.Y1, this->RowEnd);
   const float xx = s.ConicXX;
   const float amplitude = s.Amplitude;
-  const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
   const float kernelDepth = s.Depth;
   const float cutoff = this->Cutoff;
   const int columns = s.X1 - s.X0 + 1;
@@ -80,7 +77,7 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
     const float dy = y + 0.5f - s.CenterY;
     const float bq = s.ConicXY * dy;
     const float yTerm = s.ConicYY * dy * dy;
-    const std::size_t row = this->Row(y, s);
+    const std::size_t row = static_cast<std::size_t>(y - this->RowBegin) * this->Stride + s.X0;
     for (int group = 0; group < groups; ++group)
     {
       const int i = group * Lanes;
@@ -93,42 +90,101 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
       // Behind the opaque scene the kernel adds nothing.
       const Float8 sceneDepth = Float8::Load(this->SceneDepths.data() + row + i);
       t = Float8::SelectLess(sceneDepth, kernelDepth, 0.0f, t);
-      this->Accumulate(row + i, t, red, green, blue);
+      visit(y, s.X0 + i, row + i, t);
     }
   }
 }
 
 //------------------------------------------------------------------------------
-void VolumeLayerCompositor::Flush(const float* weights, bool ascending, glm::vec4* buffer)
+SPLAT_ALWAYS_INLINE Float8 VolumeLayerCompositor::Opacity(const Float8& t) const
 {
-  for (int y = this->RowBegin; y <= this->RowEnd; ++y)
+  // 1 - exp(-t) loses digits only where the opacity is far below an 8-bit step.
+  return this->PeakOpacity ? Float8::SelectLess(t, MaximumPeakOpacity, t, MaximumPeakOpacity)
+                           : Float8(1.0f) - Float8::NegativeExponential(t);
+}
+
+//------------------------------------------------------------------------------
+SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
+{
+  if (!this->Reaches(s))
+  {
+    return;
+  }
+  const int y0 = std::max(s.Y0, this->RowBegin);
+  const int y1 = std::min(s.Y1, this->RowEnd);
+  this->TouchRows(y0, y1);
+  for (int y = y0; y <= y1; ++y)
+  {
+    this->Row(y, s);
+  }
+  const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
+  this->ForEachGroup(
+    s, [&](int, int, std::size_t q, const Float8& t) { this->Accumulate(q, t, red, green, blue); });
+}
+
+//------------------------------------------------------------------------------
+SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Composite(
+  const ScreenKernel& s, const float* weights, bool ascending, glm::vec4* buffer)
+{
+  if (!this->Reaches(s))
+  {
+    return;
+  }
+  const glm::vec3 color(s.Color[0], s.Color[1], s.Color[2]);
+  this->ForEachGroup(s,
+    [&](int y, int x, std::size_t, const Float8& t)
+    {
+      alignas(32) float alphas[Lanes];
+      this->Opacity(t).Store(alphas);
+      const std::size_t pixel = static_cast<std::size_t>(y) * this->Width + x;
+      const int lanes = std::min(Lanes, s.X1 - x + 1);
+      for (int i = 0; i < lanes; ++i)
+      {
+        this->Under(weights, ascending, buffer, pixel + i, x + i, alphas[i], alphas[i] * color);
+      }
+    });
+}
+
+//------------------------------------------------------------------------------
+SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Flush(
+  const float* weights, bool ascending, glm::vec4* buffer)
+{
+  const Float8 zero(0.0f);
+  for (int y = this->LayerRows.x; y <= this->LayerRows.y; ++y)
   {
     glm::ivec2& span = this->Spans[y - this->RowBegin];
     const std::size_t row = static_cast<std::size_t>(y - this->RowBegin) * this->Stride;
     const std::size_t pixelRow = static_cast<std::size_t>(y) * this->Width;
-    for (int x = span.x; x <= span.y; ++x)
+    // Eight pixels at a time (the rows' padding takes the last group's excess lanes, whose sums
+    // are zero): the layer's opacity and the color's scale, then the pixels it covers one by
+    // one.
+    for (int x = span.x; x <= span.y; x += Lanes)
     {
       const std::size_t q = row + x;
-      const float depth = this->Sums[3][q];
-      const glm::vec3 color(this->Sums[0][q], this->Sums[1][q], this->Sums[2][q]);
+      const Float8 depth = Float8::Load(this->Sums[3].data() + q);
+      alignas(32) float alphas[Lanes];
+      alignas(32) float scales[Lanes];
+      const Float8 alpha = this->Opacity(depth);
+      alpha.Store(alphas);
+      Float8::SelectLess(zero, depth, alpha / depth, zero).Store(scales);
+      alignas(32) float colors[3][Lanes];
+      for (int channel = 0; channel < 3; ++channel)
+      {
+        Float8::Load(this->Sums[channel].data() + q).Store(colors[channel]);
+      }
       for (auto& sum : this->Sums)
       {
-        sum[q] = 0.0f;
+        zero.Store(sum.data() + q);
       }
-      const std::size_t p = pixelRow + x;
-      if (!(depth > 0.0f) || !IsOpen(weights, ascending, buffer, p))
+      const int lanes = std::min(Lanes, span.y - x + 1);
+      for (int i = 0; i < lanes; ++i)
       {
-        continue;
+        this->Under(weights, ascending, buffer, pixelRow + x + i, x + i, alphas[i],
+          scales[i] * glm::vec3(colors[0][i], colors[1][i], colors[2][i]));
       }
-      glm::vec4& c = buffer[p];
-      // 1 - exp(-t) loses digits only where the layer's opacity is far below an 8-bit step.
-      const float alpha = this->PeakOpacity ? std::min(depth, MaximumPeakOpacity)
-                                            : 1.0f - splat::NegativeExponential(depth);
-      const float coverage = (1.0f - c.a) * alpha;
-      c += glm::vec4((coverage / depth) * color, coverage);
-      this->OpenPixels[x / Lanes] -= c.a >= TerminationAlpha;
     }
     span = glm::ivec2(std::numeric_limits<int>::max(), -1);
   }
+  this->LayerRows = glm::ivec2(std::numeric_limits<int>::max(), -1);
 }
 }

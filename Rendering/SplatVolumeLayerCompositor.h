@@ -93,6 +93,10 @@ public:
   /// by Lanes columns): Flush would leave its sums unused.
   void Add(const ScreenKernel& s);
 
+  /// Puts kernel s alone under the pixels, as Add and Flush would for a layer of that one
+  /// kernel, without the layer's sums. The current layer must be empty (flushed).
+  void Composite(const ScreenKernel& s, const float* weights, bool ascending, glm::vec4* buffer);
+
   /**
    * Adds kernel s as Add does, over its whole box (no cutoff ellipse), with its footprint
    * factored: for the pixel at offset (m, n) from the one holding the kernel's center,
@@ -150,6 +154,12 @@ private:
     (Float8::Load(b) + t * blue).Store(b);
   }
 
+  /// The layer's rows grow to [y0, y1], a kernel's rows within the band.
+  SPLAT_ALWAYS_INLINE void TouchRows(int y0, int y1)
+  {
+    this->LayerRows = glm::ivec2(std::min(this->LayerRows.x, y0), std::max(this->LayerRows.y, y1));
+  }
+
   /// Where the sums of band row y start at kernel s's first column; the layer's span of the row
   /// grows to the kernel's columns.
   SPLAT_ALWAYS_INLINE std::size_t Row(int y, const ScreenKernel& s)
@@ -164,6 +174,29 @@ private:
     return buffer[p].a < TerminationAlpha &&
       (!weights || (ascending ? weights[p] > 0.0f : weights[p] < 0.0f));
   }
+
+  /// Calls visit(y, x, q, t) for each group of Lanes pixels of kernel s's box within the band:
+  /// (x, y) is the group's first pixel, q indexes the band's sums there, t holds the kernel's
+  /// optical depths there (zero beyond the box, outside the cutoff ellipse and behind the
+  /// opaque scene).
+  template <typename Visit>
+  SPLAT_ALWAYS_INLINE void ForEachGroup(const ScreenKernel& s, Visit&& visit);
+
+  /// Puts a layer of opacity alpha and color `color` (times alpha) under pixel p (column x)
+  /// of `buffer`, where it is open. Without branches: which pixels of a footprint's rim or of
+  /// the list's blend region are open is hard to predict.
+  SPLAT_ALWAYS_INLINE void Under(const float* weights, bool ascending, glm::vec4* buffer,
+    std::size_t p, int x, float alpha, const glm::vec3& color)
+  {
+    glm::vec4& c = buffer[p];
+    const bool open = alpha > 0.0f && IsOpen(weights, ascending, buffer, p);
+    const float transmittance = open ? 1.0f - c.a : 0.0f;
+    c += glm::vec4(transmittance * color, transmittance * alpha);
+    this->OpenPixels[x / Lanes] -= open && c.a >= TerminationAlpha;
+  }
+
+  /// The opacity of optical depths t (peak opacities in the peak model).
+  SPLAT_ALWAYS_INLINE Float8 Opacity(const Float8& t) const;
 
   int Width;
   int RowBegin;
@@ -180,6 +213,7 @@ private:
   // peak model), in separate arrays so that the row loop vectorizes.
   std::array<std::vector<float>, 4> Sums;
   std::vector<glm::ivec2> Spans; // per band row: the columns the layer touched
+  glm::ivec2 LayerRows;           // the band rows the layer touched (first, last)
   std::vector<int> OpenPixels;    // per tile of Lanes columns: its open pixels (see Begin)
 };
 
@@ -220,6 +254,7 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::AddFactored(
       .Store(rowFactors + j);
   }
   const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
+  this->TouchRows(y0, y1);
   for (int y = y0; y <= y1; ++y)
   {
     const int n = y - yc;

@@ -572,14 +572,23 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
             }
             compositor.Begin(weights, ascending, buffer);
             const vtkIdType count = offsets[b + 1] - offsets[b];
+            const auto binned = [&](vtkIdType n) -> const BinnedKernel&
+            { return bin[ascending ? offsets[b] + n : offsets[b + 1] - 1 - n]; };
             vtkIdType layer = -1;
             for (vtkIdType n = 0; n < count; ++n)
             {
-              const BinnedKernel& k = bin[ascending ? offsets[b] + n : offsets[b + 1] - 1 - n];
+              const BinnedKernel& k = binned(n);
               if (k.Layer != layer)
               {
                 compositor.Flush(weights, ascending, buffer);
                 layer = k.Layer;
+                // A kernel alone in its layer (every point kernel) goes under the pixels
+                // directly.
+                if (n + 1 == count || binned(n + 1).Layer != layer)
+                {
+                  compositor.Composite(k.Kernel, weights, ascending, buffer);
+                  continue;
+                }
               }
               compositor.Add(k.Kernel);
             }
