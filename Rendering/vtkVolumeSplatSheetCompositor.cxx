@@ -17,8 +17,10 @@ vtkStandardNewMacro(vtkVolumeSplatSheetCompositor);
 
 namespace
 {
-// Intermediate rows per band of the compositing, as the rasterizer's screen bands.
-constexpr int BandHeight = 16;
+// Intermediate rows per band of the compositing: twice the rasterizer's screen bands, as a
+// footprint crossing a band's edge is set up once per band (a few rows tall, it crosses one
+// of 16-row bands about a quarter of the time) and an intermediate image has fewer rows.
+constexpr int BandHeight = 32;
 
 // Intermediate pixels per standard deviation of the narrowest footprint on the front sheet.
 constexpr double SamplesPerSigma = 0.7;
