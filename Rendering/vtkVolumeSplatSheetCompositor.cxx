@@ -449,7 +449,10 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
         const float length = glm::length(axisA + t.x * axisU + t.y * axisV);
         const glm::vec4& value = values[e];
         kernel.Amplitude = f.Amplitude * length * value.w;
-        std::copy_n(&value.x, 3, kernel.Color);
+        // Assigned one by one: std::copy_n of three floats became a memmove call per voxel.
+        kernel.Color[0] = value.x;
+        kernel.Color[1] = value.y;
+        kernel.Color[2] = value.z;
         if (f.Reach > 0)
         {
           compositor.AddFactored(kernel, l.Cross.data() + f.Cross, f.Reach, CrossStride(f.Reach));
