@@ -110,16 +110,11 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
   {
     return;
   }
-  const int y0 = std::max(s.Y0, this->RowBegin);
-  const int y1 = std::min(s.Y1, this->RowEnd);
-  this->TouchRows(y0, y1);
-  for (int y = y0; y <= y1; ++y)
-  {
-    this->Row(y, s);
-  }
-  const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
+  this->Touch(s.X0, s.X1, s.Y0, s.Y1);
+  const Float8 red(s.Color[0]), green(s.Color[1]), blue(s.Color[2]);
+  const std::array<float*, 4> sums = this->SumsAt(0);
   this->ForEachGroup(
-    s, [&](int, int, std::size_t q, const Float8& t) { this->Accumulate(q, t, red, green, blue); });
+    s, [&](int, int, std::size_t q, const Float8& t) { Accumulate(sums, q, t, red, green, blue); });
 }
 
 //------------------------------------------------------------------------------

@@ -106,8 +106,9 @@ public:
    * table must cover the box (|m|, |n| <= reach, a further group of lanes of zeros per row).
    * Inlined into the caller's loop over kernels (built for AVX2 too), which keeps its constants
    * in registers: the footprints are a few pixels, and the call and setup a good part of them.
-   * Unlike Add it does not test whether the kernel's columns still integrate: its caller tests
-   * that (Integrates) before it sets the kernel up.
+   * Unlike Add it neither tests whether the kernel's columns still integrate nor grows the
+   * layer's rows and spans: its caller tests the first (Integrates) before it sets the kernel up
+   * and does the second with Touch, once for a row of kernels.
    */
   SPLAT_ALWAYS_INLINE void AddFactored(
     const ScreenKernel& s, const float* cross, int reach, int crossStride);
@@ -115,6 +116,20 @@ public:
   /// Puts the current layer under the band's pixels of `buffer` whose weight for the list has
   /// the traversal's sign (all pixels when weights is null), and starts a new layer.
   void Flush(const float* weights, bool ascending, glm::vec4* buffer);
+
+  /// Grows the current layer to columns [x0, x1] (within the image) of rows [y0, y1]: a box that
+  /// holds the kernels AddFactored adds.
+  SPLAT_ALWAYS_INLINE void Touch(int x0, int x1, int y0, int y1)
+  {
+    y0 = std::max(y0, this->RowBegin);
+    y1 = std::min(y1, this->RowEnd);
+    this->LayerRows = glm::ivec2(std::min(this->LayerRows.x, y0), std::max(this->LayerRows.y, y1));
+    for (int y = y0; y <= y1; ++y)
+    {
+      glm::ivec2& span = this->Spans[y - this->RowBegin];
+      span = glm::ivec2(std::min(span.x, x0), std::max(span.y, x1));
+    }
+  }
 
   /// The most columns and rows AddFactored takes.
   static constexpr int MaximumFactoredColumns = 64;
@@ -140,33 +155,21 @@ private:
     return this->Integrates(s.X0, s.X1);
   }
 
-  /// Adds optical depths t times the color to the sums of eight pixels from `sum`.
-  SPLAT_ALWAYS_INLINE void Accumulate(
-    std::size_t sum, const Float8& t, float red, float green, float blue)
+  /// The sums (red, green, blue, optical depth) from band offset q on.
+  SPLAT_ALWAYS_INLINE std::array<float*, 4> SumsAt(std::size_t q)
   {
-    float* depth = this->Sums[3].data() + sum;
-    float* r = this->Sums[0].data() + sum;
-    float* g = this->Sums[1].data() + sum;
-    float* b = this->Sums[2].data() + sum;
-    (Float8::Load(depth) + t).Store(depth);
-    (Float8::Load(r) + t * red).Store(r);
-    (Float8::Load(g) + t * green).Store(g);
-    (Float8::Load(b) + t * blue).Store(b);
+    return { this->Sums[0].data() + q, this->Sums[1].data() + q, this->Sums[2].data() + q,
+      this->Sums[3].data() + q };
   }
 
-  /// The layer's rows grow to [y0, y1], a kernel's rows within the band.
-  SPLAT_ALWAYS_INLINE void TouchRows(int y0, int y1)
+  /// Adds optical depths t times the color to the eight pixels of `sums` from offset q.
+  SPLAT_ALWAYS_INLINE static void Accumulate(const std::array<float*, 4>& sums, std::size_t q,
+    const Float8& t, const Float8& red, const Float8& green, const Float8& blue)
   {
-    this->LayerRows = glm::ivec2(std::min(this->LayerRows.x, y0), std::max(this->LayerRows.y, y1));
-  }
-
-  /// Where the sums of band row y start at kernel s's first column; the layer's span of the row
-  /// grows to the kernel's columns.
-  SPLAT_ALWAYS_INLINE std::size_t Row(int y, const ScreenKernel& s)
-  {
-    glm::ivec2& span = this->Spans[y - this->RowBegin];
-    span = glm::ivec2(std::min(span.x, s.X0), std::max(span.y, s.X1));
-    return static_cast<std::size_t>(y - this->RowBegin) * this->Stride + s.X0;
+    (Float8::Load(sums[3] + q) + t).Store(sums[3] + q);
+    (Float8::Load(sums[0] + q) + t * red).Store(sums[0] + q);
+    (Float8::Load(sums[1] + q) + t * green).Store(sums[1] + q);
+    (Float8::Load(sums[2] + q) + t * blue).Store(sums[2] + q);
   }
 
   static bool IsOpen(const float* weights, bool ascending, const glm::vec4* buffer, std::size_t p)
@@ -253,21 +256,22 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::AddFactored(
     (s.Amplitude * Float8::NegativeExponential(yy * dy * dy + (xy * dxc) * (n + dyc)))
       .Store(rowFactors + j);
   }
-  const float red = s.Color[0], green = s.Color[1], blue = s.Color[2];
-  this->TouchRows(y0, y1);
-  for (int y = y0; y <= y1; ++y)
+  const Float8 red(s.Color[0]), green(s.Color[1]), blue(s.Color[2]);
+  // The sums' rows, from the kernel's first row and column on.
+  const std::array<float*, 4> sums =
+    this->SumsAt(static_cast<std::size_t>(y0 - this->RowBegin) * this->Stride + s.X0);
+  const float* crossRow =
+    cross + static_cast<std::size_t>(n0 + reach) * crossStride + (m0 + reach);
+  for (int j = 0; j < rows; ++j)
   {
-    const int n = y - yc;
-    const float rowFactor = rowFactors[y - y0];
-    const std::size_t row = this->Row(y, s);
-    const float* crossRow =
-      cross + static_cast<std::size_t>(n + reach) * crossStride + (m0 + reach);
+    const float rowFactor = rowFactors[j];
     for (int group = 0; group < groups; ++group)
     {
       const int i = group * Lanes;
-      this->Accumulate(
-        row + i, rowFactor * columnFactors[group] * Float8::Load(crossRow + i), red, green, blue);
+      Accumulate(sums, static_cast<std::size_t>(j) * this->Stride + i,
+        rowFactor * columnFactors[group] * Float8::Load(crossRow + i), red, green, blue);
     }
+    crossRow += crossStride;
   }
 }
 }

@@ -425,6 +425,9 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
       const float v = static_cast<float>(row);
       const Footprint* rowFootprints = footprints + static_cast<int>(v * l.TileScale.y) * Tiles;
       kernel.CenterY = s.Scale * v + offset.y;
+      compositor.Touch(span.x, span.y,
+        static_cast<int>(std::ceil(kernel.CenterY - s.HalfExtent.y - 0.5f)),
+        static_cast<int>(std::floor(kernel.CenterY + s.HalfExtent.y - 0.5f)));
       for (vtkIdType e = starts[r]; e < starts[r + 1]; ++e)
       {
         const float u = static_cast<float>(lattice[e] & 0xffffu);
