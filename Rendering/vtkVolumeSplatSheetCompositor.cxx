@@ -428,37 +428,48 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
       compositor.Touch(span.x, span.y,
         static_cast<int>(std::ceil(kernel.CenterY - s.HalfExtent.y - 0.5f)),
         static_cast<int>(std::floor(kernel.CenterY + s.HalfExtent.y - 0.5f)));
+      // The path length along a voxel's ray per unit of index along the list's axis is
+      // |path + u pathPerColumn|.
+      const glm::vec3 path = this->Perspective
+        ? axisA + ((v - eye.y) * toSheet) * axisV - (eye.x * toSheet) * axisU
+        : axisA + shear.x * axisU + shear.y * axisV;
+      const glm::vec3 pathPerColumn = this->Perspective ? toSheet * axisU : glm::vec3(0.0f);
+      // The voxels' tile along the row, whose footprint they share.
+      int tile = -1;
+      const Footprint* f = nullptr;
       for (vtkIdType e = starts[r]; e < starts[r + 1]; ++e)
       {
         const float u = static_cast<float>(lattice[e] & 0xffffu);
-        const Footprint& f = rowFootprints[static_cast<int>(u * l.TileScale.x)];
-        const glm::ivec2 x = columns(u, u, f.HalfExtent);
+        const int column = static_cast<int>(u * l.TileScale.x);
+        if (column != tile)
+        {
+          tile = column;
+          f = rowFootprints + tile;
+          kernel.ConicXX = f->ConicXX;
+          kernel.ConicXY = f->ConicXY;
+          kernel.ConicYY = f->ConicYY;
+          kernel.Y0 = static_cast<int>(std::ceil(kernel.CenterY - f->HalfExtent.y - 0.5f));
+          kernel.Y1 = static_cast<int>(std::floor(kernel.CenterY + f->HalfExtent.y - 0.5f));
+        }
+        const glm::ivec2 x = columns(u, u, f->HalfExtent);
         if (x.x > x.y || !compositor.Integrates(x.x, x.y))
         {
           continue;
         }
         kernel.X0 = x.x;
         kernel.X1 = x.y;
-        kernel.ConicXX = f.ConicXX;
-        kernel.ConicXY = f.ConicXY;
-        kernel.ConicYY = f.ConicYY;
         kernel.CenterX = s.Scale * u + offset.x;
-        kernel.Y0 = static_cast<int>(std::ceil(kernel.CenterY - f.HalfExtent.y - 0.5f));
-        kernel.Y1 = static_cast<int>(std::floor(kernel.CenterY + f.HalfExtent.y - 0.5f));
-        // The path length along the voxel's ray per unit of index along the list's axis.
-        const glm::vec2 t = this->Perspective
-          ? (glm::vec2(u, v) - glm::vec2(eye)) * toSheet
-          : shear;
-        const float length = glm::length(axisA + t.x * axisU + t.y * axisV);
+        const float length = glm::length(path + u * pathPerColumn);
         const glm::vec4& value = values[e];
-        kernel.Amplitude = f.Amplitude * length * value.w;
+        kernel.Amplitude = f->Amplitude * length * value.w;
         // Assigned one by one: std::copy_n of three floats became a memmove call per voxel.
         kernel.Color[0] = value.x;
         kernel.Color[1] = value.y;
         kernel.Color[2] = value.z;
-        if (f.Reach > 0)
+        if (f->Reach > 0)
         {
-          compositor.AddFactored(kernel, l.Cross.data() + f.Cross, f.Reach, CrossStride(f.Reach));
+          compositor.AddFactored(
+            kernel, l.Cross.data() + f->Cross, f->Reach, CrossStride(f->Reach));
         }
         else
         {
