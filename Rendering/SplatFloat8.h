@@ -28,6 +28,7 @@ struct Float8
 {
   typedef float Vector __attribute__((vector_size(32)));
   typedef std::int32_t Integers __attribute__((vector_size(32)));
+  typedef float Quad __attribute__((vector_size(16)));
   Vector V;
 
   Float8() = default;
@@ -74,6 +75,37 @@ struct Float8
     return Float8(less.V < than.V ? a.V : b.V);
   }
 
+  /// The channels of eight consecutive four-float pixels from p, a Float8 each: pixel i in lane
+  /// i. Each pixel is read as one 16-byte load, so that a load of a pixel stored by an earlier
+  /// StoreChannels (or a glm::vec4 store) at another group's offset is forwarded from the store.
+  SPLAT_FLOAT8 static void LoadChannels(const float* p, Float8 (&channels)[4])
+  {
+    Quad q[8];
+    std::memcpy(q, p, sizeof(q));
+    // Rows of pixels i and i + 4, then a 4 x 4 transpose in each half.
+    Vector r[4];
+    for (int i = 0; i < 4; ++i)
+    {
+      r[i] = __builtin_shufflevector(q[i], q[i + 4], 0, 1, 2, 3, 4, 5, 6, 7);
+    }
+    Transpose(r, channels);
+  }
+
+  /// Stores channels as eight consecutive four-float pixels from p (see LoadChannels).
+  SPLAT_FLOAT8 static void StoreChannels(float* p, const Float8 (&channels)[4])
+  {
+    Float8 r[4];
+    const Vector c[4] = { channels[0].V, channels[1].V, channels[2].V, channels[3].V };
+    Transpose(c, r);
+    Quad q[8];
+    for (int i = 0; i < 4; ++i)
+    {
+      q[i] = __builtin_shufflevector(r[i].V, r[i].V, 0, 1, 2, 3);
+      q[i + 4] = __builtin_shufflevector(r[i].V, r[i].V, 4, 5, 6, 7);
+    }
+    std::memcpy(p, q, sizeof(q));
+  }
+
   /// splat::NegativeExponential per lane, step by step.
   SPLAT_FLOAT8 static Float8 NegativeExponential(const Float8& x)
   {
@@ -91,6 +123,21 @@ struct Float8
     Vector scale;
     std::memcpy(&scale, &exponent, sizeof(scale));
     return Float8(x.V < Largest ? p * scale : Vector{});
+  }
+
+private:
+  /// The 4 x 4 transposes of the halves of four vectors: lane j of out[i] is lane i of in[j]
+  /// within each half.
+  SPLAT_FLOAT8 static void Transpose(const Vector (&in)[4], Float8 (&out)[4])
+  {
+    const Vector t0 = __builtin_shufflevector(in[0], in[1], 0, 8, 1, 9, 4, 12, 5, 13);
+    const Vector t1 = __builtin_shufflevector(in[0], in[1], 2, 10, 3, 11, 6, 14, 7, 15);
+    const Vector t2 = __builtin_shufflevector(in[2], in[3], 0, 8, 1, 9, 4, 12, 5, 13);
+    const Vector t3 = __builtin_shufflevector(in[2], in[3], 2, 10, 3, 11, 6, 14, 7, 15);
+    out[0] = Float8(__builtin_shufflevector(t0, t2, 0, 1, 8, 9, 4, 5, 12, 13));
+    out[1] = Float8(__builtin_shufflevector(t0, t2, 2, 3, 10, 11, 6, 7, 14, 15));
+    out[2] = Float8(__builtin_shufflevector(t1, t3, 0, 1, 8, 9, 4, 5, 12, 13));
+    out[3] = Float8(__builtin_shufflevector(t1, t3, 2, 3, 10, 11, 6, 7, 14, 15));
   }
 };
 #undef SPLAT_FLOAT8
@@ -170,6 +217,26 @@ struct Float8
       v = splat::NegativeExponential(v);
     }
     return x;
+  }
+  static void LoadChannels(const float* p, Float8 (&channels)[4])
+  {
+    for (int i = 0; i < 8; ++i)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        channels[c].V[i] = p[4 * i + c];
+      }
+    }
+  }
+  static void StoreChannels(float* p, const Float8 (&channels)[4])
+  {
+    for (int i = 0; i < 8; ++i)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        p[4 * i + c] = channels[c].V[i];
+      }
+    }
   }
 };
 #endif

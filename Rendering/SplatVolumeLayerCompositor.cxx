@@ -96,6 +96,52 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::ForEachGroup(const ScreenKernel&
 }
 
 //------------------------------------------------------------------------------
+SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::UnderGroup(const float* weights, bool ascending,
+  glm::vec4* buffer, std::size_t p, int x, int lanes, const Float8& alpha, const Float8& red,
+  const Float8& green, const Float8& blue)
+{
+  if (x + Lanes > this->Width)
+  {
+    alignas(32) float values[4][Lanes];
+    alpha.Store(values[3]);
+    red.Store(values[0]);
+    green.Store(values[1]);
+    blue.Store(values[2]);
+    for (int i = 0; i < lanes; ++i)
+    {
+      this->Under(weights, ascending, buffer, p + i, x + i, values[3][i],
+        glm::vec3(values[0][i], values[1][i], values[2][i]));
+    }
+    return;
+  }
+  Float8 c[4];
+  Float8::LoadChannels(&buffer[p].x, c);
+  const Float8 zero(0.0f), one(1.0f), termination(TerminationAlpha);
+  // Under's transmittance: 1 - alpha where the pixel is open, zero elsewhere.
+  Float8 transmittance = Float8::SelectLess(c[3], termination, one - c[3], zero);
+  transmittance = Float8::SelectLess(zero, alpha, transmittance, zero);
+  if (weights)
+  {
+    const Float8 w = Float8::Load(weights + p);
+    transmittance = ascending ? Float8::SelectLess(zero, w, transmittance, zero)
+                              : Float8::SelectLess(w, zero, transmittance, zero);
+  }
+  c[0] = c[0] + transmittance * red;
+  c[1] = c[1] + transmittance * green;
+  c[2] = c[2] + transmittance * blue;
+  c[3] = c[3] + transmittance * alpha;
+  Float8::StoreChannels(&buffer[p].x, c);
+  // The pixels this closed: open before, at the termination opacity now.
+  alignas(32) float closed[Lanes];
+  Float8::SelectLess(zero, transmittance, Float8::SelectLess(c[3], termination, zero, one), zero)
+    .Store(closed);
+  for (int i = 0; i < Lanes; ++i)
+  {
+    this->OpenPixels[(x + i) / Lanes] -= static_cast<int>(closed[i]);
+  }
+}
+
+//------------------------------------------------------------------------------
 SPLAT_ALWAYS_INLINE Float8 VolumeLayerCompositor::Opacity(const Float8& t) const
 {
   // 1 - exp(-t) loses digits only where the opacity is far below an 8-bit step.
@@ -114,7 +160,8 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Add(const ScreenKernel& s)
   const Float8 red(s.Color[0]), green(s.Color[1]), blue(s.Color[2]);
   const std::array<float*, 4> sums = this->SumsAt(0);
   this->ForEachGroup(
-    s, [&](int, int, std::size_t q, const Float8& t) { Accumulate(sums, q, t, red, green, blue); });
+    s, [&](int, int, std::size_t q, const Float8& t) SPLAT_INLINE_LAMBDA
+    { Accumulate(sums, q, t, red, green, blue); });
 }
 
 //------------------------------------------------------------------------------
@@ -125,18 +172,13 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Composite(
   {
     return;
   }
-  const glm::vec3 color(s.Color[0], s.Color[1], s.Color[2]);
+  const Float8 red(s.Color[0]), green(s.Color[1]), blue(s.Color[2]);
   this->ForEachGroup(s,
-    [&](int y, int x, std::size_t, const Float8& t)
+    [&](int y, int x, std::size_t, const Float8& t) SPLAT_INLINE_LAMBDA
     {
-      alignas(32) float alphas[Lanes];
-      this->Opacity(t).Store(alphas);
-      const std::size_t pixel = static_cast<std::size_t>(y) * this->Width + x;
-      const int lanes = std::min(Lanes, s.X1 - x + 1);
-      for (int i = 0; i < lanes; ++i)
-      {
-        this->Under(weights, ascending, buffer, pixel + i, x + i, alphas[i], alphas[i] * color);
-      }
+      const Float8 alpha = this->Opacity(t);
+      this->UnderGroup(weights, ascending, buffer, static_cast<std::size_t>(y) * this->Width + x,
+        x, std::min(Lanes, s.X1 - x + 1), alpha, alpha * red, alpha * green, alpha * blue);
     });
 }
 
@@ -151,32 +193,22 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Flush(
     const std::size_t row = static_cast<std::size_t>(y - this->RowBegin) * this->Stride;
     const std::size_t pixelRow = static_cast<std::size_t>(y) * this->Width;
     // Eight pixels at a time (the rows' padding takes the last group's excess lanes, whose sums
-    // are zero): the layer's opacity and the color's scale, then the pixels it covers one by
-    // one.
+    // are zero): the layer's opacity and colors, then under the pixels.
     for (int x = span.x; x <= span.y; x += Lanes)
     {
       const std::size_t q = row + x;
       const Float8 depth = Float8::Load(this->Sums[3].data() + q);
-      alignas(32) float alphas[Lanes];
-      alignas(32) float scales[Lanes];
       const Float8 alpha = this->Opacity(depth);
-      alpha.Store(alphas);
-      Float8::SelectLess(zero, depth, alpha / depth, zero).Store(scales);
-      alignas(32) float colors[3][Lanes];
-      for (int channel = 0; channel < 3; ++channel)
-      {
-        Float8::Load(this->Sums[channel].data() + q).Store(colors[channel]);
-      }
+      const Float8 scale = Float8::SelectLess(zero, depth, alpha / depth, zero);
+      const Float8 red = scale * Float8::Load(this->Sums[0].data() + q);
+      const Float8 green = scale * Float8::Load(this->Sums[1].data() + q);
+      const Float8 blue = scale * Float8::Load(this->Sums[2].data() + q);
       for (auto& sum : this->Sums)
       {
         zero.Store(sum.data() + q);
       }
-      const int lanes = std::min(Lanes, span.y - x + 1);
-      for (int i = 0; i < lanes; ++i)
-      {
-        this->Under(weights, ascending, buffer, pixelRow + x + i, x + i, alphas[i],
-          scales[i] * glm::vec3(colors[0][i], colors[1][i], colors[2][i]));
-      }
+      this->UnderGroup(weights, ascending, buffer, pixelRow + x, x,
+        std::min(Lanes, span.y - x + 1), alpha, red, green, blue);
     }
     span = glm::ivec2(std::numeric_limits<int>::max(), -1);
   }

@@ -36,11 +36,14 @@
 #define SPLAT_VECTOR_CLONES
 #endif
 
-// For the small helpers of those loops, which GCC otherwise leaves out of line in the clones.
+// For the small helpers of those loops, which GCC otherwise leaves out of line in the clones,
+// and for their visitors (lambdas), which GCC otherwise builds once for the baseline only.
 #if defined(__GNUC__)
 #define SPLAT_ALWAYS_INLINE inline __attribute__((always_inline))
+#define SPLAT_INLINE_LAMBDA __attribute__((always_inline))
 #else
 #define SPLAT_ALWAYS_INLINE inline
+#define SPLAT_INLINE_LAMBDA
 #endif
 
 namespace splat
@@ -197,6 +200,16 @@ private:
     c += glm::vec4(transmittance * color, transmittance * alpha);
     this->OpenPixels[x / Lanes] -= open && c.a >= TerminationAlpha;
   }
+
+  /**
+   * Under for the pixels of `buffer` from p (column x) with opacities alpha and colors (times
+   * alpha) red, green and blue, lane by lane: eight pixels as vectors where they lie within
+   * the image's row (a lane of zero opacity leaves its pixel as it is), the first `lanes` one
+   * by one otherwise.
+   */
+  SPLAT_ALWAYS_INLINE void UnderGroup(const float* weights, bool ascending, glm::vec4* buffer,
+    std::size_t p, int x, int lanes, const Float8& alpha, const Float8& red, const Float8& green,
+    const Float8& blue);
 
   /// The opacity of optical depths t (peak opacities in the peak model).
   SPLAT_ALWAYS_INLINE Float8 Opacity(const Float8& t) const;
