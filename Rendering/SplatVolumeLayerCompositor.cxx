@@ -142,11 +142,22 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::UnderGroup(const float* weights,
 }
 
 //------------------------------------------------------------------------------
-SPLAT_ALWAYS_INLINE Float8 VolumeLayerCompositor::Opacity(const Float8& t) const
+SPLAT_ALWAYS_INLINE Float8 VolumeLayerCompositor::Opacity(const Float8& t, float largest) const
 {
+  if (this->PeakOpacity)
+  {
+    return Float8::SelectLess(t, MaximumPeakOpacity, t, MaximumPeakOpacity);
+  }
+  // Small optical depths (those of most point kernels) take the series of 1 - exp(-t) to t^5:
+  // no exponential, and its remainder is below t^6 / 720, 6e-9 at 1/8.
+  if (largest <= 0.125f)
+  {
+    const Float8 one(1.0f);
+    return t *
+      (one - t * (0.5f - t * (1.0f / 6.0f - t * (1.0f / 24.0f - t * (1.0f / 120.0f)))));
+  }
   // 1 - exp(-t) loses digits only where the opacity is far below an 8-bit step.
-  return this->PeakOpacity ? Float8::SelectLess(t, MaximumPeakOpacity, t, MaximumPeakOpacity)
-                           : Float8(1.0f) - Float8::NegativeExponential(t);
+  return Float8(1.0f) - Float8::NegativeExponential(t);
 }
 
 //------------------------------------------------------------------------------
@@ -176,7 +187,7 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Composite(
   this->ForEachGroup(s,
     [&](int y, int x, std::size_t, const Float8& t) SPLAT_INLINE_LAMBDA
     {
-      const Float8 alpha = this->Opacity(t);
+      const Float8 alpha = this->Opacity(t, s.Amplitude);
       this->UnderGroup(weights, ascending, buffer, static_cast<std::size_t>(y) * this->Width + x,
         x, std::min(Lanes, s.X1 - x + 1), alpha, alpha * red, alpha * green, alpha * blue);
     });

@@ -25,6 +25,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 // Where GCC can dispatch on the running CPU (ifunc, x86-64 glibc), the per-pixel loops are also
@@ -211,8 +212,10 @@ private:
     std::size_t p, int x, int lanes, const Float8& alpha, const Float8& red, const Float8& green,
     const Float8& blue);
 
-  /// The opacity of optical depths t (peak opacities in the peak model).
-  SPLAT_ALWAYS_INLINE Float8 Opacity(const Float8& t) const;
+  /// The opacity of optical depths t, which are at most `largest` (peak opacities in the peak
+  /// model).
+  SPLAT_ALWAYS_INLINE Float8 Opacity(
+    const Float8& t, float largest = std::numeric_limits<float>::infinity()) const;
 
   int Width;
   int RowBegin;
