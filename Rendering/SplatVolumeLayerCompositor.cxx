@@ -11,6 +11,10 @@ namespace
 {
 // The most a kernel of the 3D Gaussian Splatting convention covers a pixel, as in its viewers.
 constexpr float MaximumPeakOpacity = 0.99f;
+
+// The largest optical depth whose opacity 1 - exp(-t) is taken from its series to t^5: the
+// remainder, below t^6 / 720, is 6e-9 there.
+constexpr float SeriesOpticalDepth = 0.125f;
 }
 
 namespace splat
@@ -148,9 +152,8 @@ SPLAT_ALWAYS_INLINE Float8 VolumeLayerCompositor::Opacity(const Float8& t, float
   {
     return Float8::SelectLess(t, MaximumPeakOpacity, t, MaximumPeakOpacity);
   }
-  // Small optical depths (those of most point kernels) take the series of 1 - exp(-t) to t^5:
-  // no exponential, and its remainder is below t^6 / 720, 6e-9 at 1/8.
-  if (largest <= 0.125f)
+  // Small optical depths (those of most point kernels) need no exponential.
+  if (largest <= SeriesOpticalDepth)
   {
     const Float8 one(1.0f);
     return t *
