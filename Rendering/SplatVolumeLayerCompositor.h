@@ -83,6 +83,9 @@ class VolumeLayerCompositor
 public:
   using ScreenKernel = vtkVolumeSplatRasterizer::ScreenKernel;
 
+  /// The pixels of a row that the per-pixel loops take at once (Float8).
+  static constexpr int Lanes = 8;
+
   /// A band of rows [rowBegin, rowEnd] of an image `width` pixels wide; sceneDepths, when not
   /// null, holds the opaque scene's eye depth per image pixel.
   VolumeLayerCompositor(int width, int rowBegin, int rowEnd, float cutoff, bool peakOpacity,
@@ -101,21 +104,58 @@ public:
   /// kernel, without the layer's sums. The current layer must be empty (flushed).
   void Composite(const ScreenKernel& s, const float* weights, bool ascending, glm::vec4* buffer);
 
+  /// The most columns and rows AddFactored takes.
+  static constexpr int MaximumFactoredColumns = 64;
+
+  /// What the footprints of AddFactored share in a run of kernels: a conic, a cross table and
+  /// the row of their centers (a tile's voxels in one row of a sheet). Set up by BeginFactoredRun.
+  struct FactoredRun
+  {
+    int Rows;        // the band rows the footprints cover, from FirstRow (none when zero)
+    int FirstRow;    // as a band offset
+    float ConicXX;
+    float ColumnSlope; // ConicXY times the centers' offset along y from their pixel's center
+    const float* Cross; // the cross table at the first row and the centers' column
+    int CrossStride;
+    // Per row from the first, dy its offset from the centers: ConicYY dy^2 and ConicXY dy.
+    Float8 RowSquares[MaximumFactoredColumns / Lanes];
+    Float8 RowSlopes[MaximumFactoredColumns / Lanes];
+  };
+
   /**
-   * Adds kernel s as Add does, over its whole box (no cutoff ellipse), with its footprint
-   * factored: for the pixel at offset (m, n) from the one holding the kernel's center,
-   * exp(-beta) is a factor of column m times a factor of row n times
-   * cross[(n + reach) crossStride + m + reach] = exp(-ConicXY m n), a table of the kernels'
-   * shared conic. That is one exponential per column and row instead of one per pixel. The
-   * table must cover the box (|m|, |n| <= reach, a further group of lanes of zeros per row).
-   * Inlined into the caller's loop over kernels (built for AVX2 too), which keeps its constants
-   * in registers: the footprints are a few pixels, and the call and setup a good part of them.
-   * Unlike Add it neither tests whether the kernel's columns still integrate nor grows the
-   * layer's rows and spans: its caller tests the first (Integrates) before it sets the kernel up
-   * and does the second with Touch, once for a row of kernels.
+   * Sets up `run` for kernels centered on row centerY of the image, with conic (xx, xy, yy)
+   * and rows [y0, y1] (clipped to the band here): each footprint is taken over its whole box
+   * (no cutoff ellipse), factored so that for the pixel at offset (m, n) from the one holding
+   * the kernel's center, exp(-beta) is a factor of column m times a factor of row n times
+   * cross[(n + reach) crossStride + m + reach] = exp(-xy m n), a table of the run's conic. That
+   * is one exponential per group of columns and of rows instead of one per pixel. The table
+   * must cover the boxes (|m|, |n| <= reach, a further group of lanes of zeros per row).
    */
-  SPLAT_ALWAYS_INLINE void AddFactored(
-    const ScreenKernel& s, const float* cross, int reach, int crossStride);
+  SPLAT_ALWAYS_INLINE void BeginFactoredRun(FactoredRun& run, float centerY, int y0, int y1,
+    float xx, float xy, float yy, const float* cross, int reach, int crossStride) const;
+
+  /**
+   * Adds the kernel of run `run` centered on column centerX, over columns [x0, x1] (within the
+   * image), as Add does. Inlined into the caller's loop over kernels (built for AVX2 too),
+   * with a path of its own for footprints of at most a group of lanes by a group of rows (the
+   * most at the sheets' intermediate scale): the footprints are a few pixels, and the setup a
+   * good part of them. Unlike Add it neither tests whether the kernel's columns still
+   * integrate nor grows the layer's rows and spans: its caller tests the first (Integrates)
+   * before it sets the kernel up and does the second with Touch, once for a row of kernels.
+   */
+  SPLAT_ALWAYS_INLINE void AddFactored(const FactoredRun& run, float centerX, int x0, int x1,
+    float amplitude, const glm::vec3& color)
+  {
+    if (x1 - x0 < Lanes && run.Rows <= Lanes)
+    {
+      this->AddFactoredGroups<1>(run, centerX, x0, x1, amplitude, color);
+    }
+    else
+    {
+      this->AddFactoredGroups<MaximumFactoredColumns / Lanes>(
+        run, centerX, x0, x1, amplitude, color);
+    }
+  }
 
   /// Puts the current layer under the band's pixels of `buffer` whose weight for the list has
   /// the traversal's sign (all pixels when weights is null), and starts a new layer.
@@ -134,9 +174,6 @@ public:
       span = glm::ivec2(std::min(span.x, x0), std::max(span.y, x1));
     }
   }
-
-  /// The most columns and rows AddFactored takes.
-  static constexpr int MaximumFactoredColumns = 64;
 
   /// Whether some pixel of the band's columns [x0, x1] (within the image) still integrates,
   /// at the granularity of the early termination (see Add).
@@ -175,6 +212,11 @@ private:
     (Float8::Load(sums[1] + q) + t * green).Store(sums[1] + q);
     (Float8::Load(sums[2] + q) + t * blue).Store(sums[2] + q);
   }
+
+  /// AddFactored for footprints of at most maximumGroups groups of lanes and of rows.
+  template <int MaximumGroups>
+  SPLAT_ALWAYS_INLINE void AddFactoredGroups(const FactoredRun& run, float centerX, int x0,
+    int x1, float amplitude, const glm::vec3& color);
 
   static bool IsOpen(const float* weights, bool ascending, const glm::vec4* buffer, std::size_t p)
   {
@@ -222,9 +264,8 @@ private:
   int RowEnd;
   float Cutoff;
   bool PeakOpacity;
-  // Band rows are padded by a group of lanes, which the last group of a kernel at the right
+  // Band rows are padded by a group of Lanes, which the last group of a kernel at the right
   // edge may reach (adding zeros).
-  static constexpr int Lanes = 8;
   int Stride;
   // Per band pixel: the opaque scene's eye depth (infinite where there is none).
   std::vector<float> SceneDepths;
@@ -237,54 +278,74 @@ private:
 };
 
 //------------------------------------------------------------------------------
-SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::AddFactored(
-  const ScreenKernel& s, const float* cross, int reach, int crossStride)
+SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::BeginFactoredRun(FactoredRun& run, float centerY,
+  int y0, int y1, float xx, float xy, float yy, const float* cross, int reach,
+  int crossStride) const
 {
-  const int y0 = std::max(s.Y0, this->RowBegin);
-  const int y1 = std::min(s.Y1, this->RowEnd);
-  const int columns = s.X1 - s.X0 + 1;
-  const int groups = (columns + Lanes - 1) / Lanes;
-  // Offsets from the pixel holding the center, where the cross table is centered.
-  const int xc = static_cast<int>(std::floor(s.CenterX));
-  const int yc = static_cast<int>(std::floor(s.CenterY));
-  const float dxc = xc + 0.5f - s.CenterX;
-  const float dyc = yc + 0.5f - s.CenterY;
-  const float xx = s.ConicXX, xy = s.ConicXY, yy = s.ConicYY;
+  y0 = std::max(y0, this->RowBegin);
+  y1 = std::min(y1, this->RowEnd);
+  run.Rows = std::max(y1 - y0 + 1, 0);
+  run.FirstRow = y0 - this->RowBegin;
+  // Offsets from the pixel holding the centers, where the cross table is centered.
+  const int yc = static_cast<int>(std::floor(centerY));
+  const float dyc = yc + 0.5f - centerY;
+  const int n0 = y0 - yc;
+  run.ConicXX = xx;
+  run.ColumnSlope = xy * dyc;
+  run.Cross = cross + static_cast<std::ptrdiff_t>(n0 + reach) * crossStride + reach;
+  run.CrossStride = crossStride;
+  for (int j = 0; j < run.Rows; j += Lanes)
+  {
+    const Float8 dy = Float8::Iota() + static_cast<float>(n0 + j) + dyc;
+    run.RowSquares[j / Lanes] = yy * dy * dy;
+    run.RowSlopes[j / Lanes] = xy * dy;
+  }
+}
+
+//------------------------------------------------------------------------------
+template <int MaximumGroups>
+SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::AddFactoredGroups(const FactoredRun& run,
+  float centerX, int x0, int x1, float amplitude, const glm::vec3& color)
+{
+  const int columns = x1 - x0 + 1;
+  const int groups = MaximumGroups == 1 ? 1 : (columns + Lanes - 1) / Lanes;
+  const int xc = static_cast<int>(std::floor(centerX));
+  const float dxc = xc + 0.5f - centerX;
+  const int m0 = x0 - xc;
   const Float8 lane = Float8::Iota();
-  Float8 columnFactors[MaximumFactoredColumns / Lanes];
-  const int m0 = s.X0 - xc;
+  Float8 columnFactors[MaximumGroups];
   for (int group = 0; group < groups; ++group)
   {
     const Float8 i = lane + static_cast<float>(group * Lanes);
     const Float8 m = i + static_cast<float>(m0);
     const Float8 dx = m + dxc;
-    const Float8 factor = Float8::NegativeExponential(xx * dx * dx + (xy * dyc) * m);
+    const Float8 factor =
+      Float8::NegativeExponential(run.ConicXX * dx * dx + run.ColumnSlope * m);
     columnFactors[group] =
       Float8::SelectLess(i, Float8(static_cast<float>(columns)), factor, Float8(0.0f));
   }
-  alignas(32) float rowFactors[MaximumFactoredColumns];
-  const int rows = std::max(y1 - y0 + 1, 0);
-  const int n0 = y0 - yc;
+  alignas(32) float rowFactors[MaximumGroups * Lanes];
+  const int rows = run.Rows;
   for (int j = 0; j < rows; j += Lanes)
   {
-    const Float8 n = lane + static_cast<float>(n0 + j);
-    const Float8 dy = n + dyc;
-    (s.Amplitude * Float8::NegativeExponential(yy * dy * dy + (xy * dxc) * (n + dyc)))
+    (amplitude *
+      Float8::NegativeExponential(run.RowSquares[j / Lanes] + dxc * run.RowSlopes[j / Lanes]))
       .Store(rowFactors + j);
   }
-  const Float8 red(s.Color[0]), green(s.Color[1]), blue(s.Color[2]);
-  // The sums' rows, from the kernel's first row and column on.
-  const std::array<float*, 4> sums =
-    this->SumsAt(static_cast<std::size_t>(y0 - this->RowBegin) * this->Stride + s.X0);
-  const float* crossRow =
-    cross + static_cast<std::size_t>(n0 + reach) * crossStride + (m0 + reach);
+  const Float8 red(color.r), green(color.g), blue(color.b);
+  // Local copies: the stores through the sums could alias the members as far as the compiler
+  // knows, which would reload them for every row.
+  const std::size_t stride = this->Stride;
+  const std::size_t crossStride = run.CrossStride;
+  const std::array<float*, 4> sums = this->SumsAt(run.FirstRow * stride + x0);
+  const float* crossRow = run.Cross + m0;
   for (int j = 0; j < rows; ++j)
   {
     const float rowFactor = rowFactors[j];
     for (int group = 0; group < groups; ++group)
     {
       const int i = group * Lanes;
-      Accumulate(sums, static_cast<std::size_t>(j) * this->Stride + i,
+      Accumulate(sums, j * stride + i,
         rowFactor * columnFactors[group] * Float8::Load(crossRow + i), red, green, blue);
     }
     crossRow += crossStride;

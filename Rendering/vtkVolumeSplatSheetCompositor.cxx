@@ -437,6 +437,7 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
       // The voxels' tile along the row, whose footprint they share.
       int tile = -1;
       const Footprint* f = nullptr;
+      splat::VolumeLayerCompositor::FactoredRun run;
       for (vtkIdType e = starts[r]; e < starts[r + 1]; ++e)
       {
         const float u = static_cast<float>(lattice[e] & 0xffffu);
@@ -450,29 +451,36 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
           kernel.ConicYY = f->ConicYY;
           kernel.Y0 = static_cast<int>(std::ceil(kernel.CenterY - f->HalfExtent.y - 0.5f));
           kernel.Y1 = static_cast<int>(std::floor(kernel.CenterY + f->HalfExtent.y - 0.5f));
+          if (f->Reach > 0)
+          {
+            compositor.BeginFactoredRun(run, kernel.CenterY, kernel.Y0, kernel.Y1, f->ConicXX,
+              f->ConicXY, f->ConicYY, l.Cross.data() + f->Cross, f->Reach,
+              CrossStride(f->Reach));
+          }
         }
         const glm::ivec2 x = columns(u, u, f->HalfExtent);
         if (x.x > x.y || !compositor.Integrates(x.x, x.y))
         {
           continue;
         }
-        kernel.X0 = x.x;
-        kernel.X1 = x.y;
-        kernel.CenterX = s.Scale * u + offset.x;
+        const float centerX = s.Scale * u + offset.x;
         const float length = glm::length(path + u * pathPerColumn);
         const glm::vec4& value = values[e];
-        kernel.Amplitude = f->Amplitude * length * value.w;
-        // Assigned one by one: std::copy_n of three floats became a memmove call per voxel.
-        kernel.Color[0] = value.x;
-        kernel.Color[1] = value.y;
-        kernel.Color[2] = value.z;
+        const float amplitude = f->Amplitude * length * value.w;
         if (f->Reach > 0)
         {
-          compositor.AddFactored(
-            kernel, l.Cross.data() + f->Cross, f->Reach, CrossStride(f->Reach));
+          compositor.AddFactored(run, centerX, x.x, x.y, amplitude, glm::vec3(value));
         }
         else
         {
+          kernel.X0 = x.x;
+          kernel.X1 = x.y;
+          kernel.CenterX = centerX;
+          kernel.Amplitude = amplitude;
+          // Assigned one by one: std::copy_n of three floats became a memmove call per voxel.
+          kernel.Color[0] = value.x;
+          kernel.Color[1] = value.y;
+          kernel.Color[2] = value.z;
           compositor.Add(kernel);
         }
       }
