@@ -30,6 +30,8 @@ struct Float8
   typedef std::int32_t Integers __attribute__((vector_size(32)));
   typedef float Quad __attribute__((vector_size(16)));
   Vector V;
+  // The exponentials' argument range: exp(87) is near the largest float.
+  static constexpr float Largest = 87.0f;
 
   Float8() = default;
   SPLAT_FLOAT8 Float8(float x)
@@ -109,11 +111,17 @@ struct Float8
   /// splat::NegativeExponential per lane, step by step.
   SPLAT_FLOAT8 static Float8 NegativeExponential(const Float8& x)
   {
+    const Vector above = x.V < -Largest ? Vector{} - Largest : x.V;
+    return Float8(x.V < Largest ? NegativeExponentialAbove(Float8(above)).V : Vector{});
+  }
+
+  /// NegativeExponential of lanes that are at least -Largest (the caller's bound: there is no
+  /// clamp from below), except that lanes above Largest give exp(-Largest), about 1.6e-38,
+  /// rather than zero. Two comparisons and blends less than NegativeExponential.
+  SPLAT_FLOAT8 static Float8 NegativeExponentialAbove(const Float8& x)
+  {
     constexpr float Log2E = 1.44269504088896341f;
-    constexpr float Largest = 87.0f;
-    const Vector clamped =
-      x.V < -Largest ? Vector{} - Largest : (x.V > Largest ? Vector{} + Largest : x.V);
-    const Vector t = -clamped * Log2E;
+    const Vector t = -(x.V > Largest ? Vector{} + Largest : x.V) * Log2E;
     constexpr float Shifter = 12582912.0f;
     const Vector n = (t + Shifter) - Shifter;
     const Vector f = (t - n) * 0.693147180559945309f;
@@ -122,7 +130,7 @@ struct Float8
     const Integers exponent = (__builtin_convertvector(n, Integers) + 127) << 23;
     Vector scale;
     std::memcpy(&scale, &exponent, sizeof(scale));
-    return Float8(x.V < Largest ? p * scale : Vector{});
+    return Float8(p * scale);
   }
 
 private:
@@ -218,6 +226,7 @@ struct Float8
     }
     return x;
   }
+  static Float8 NegativeExponentialAbove(const Float8& x) { return NegativeExponential(x); }
   static void LoadChannels(const float* p, Float8 (&channels)[4])
   {
     for (int i = 0; i < 8; ++i)

@@ -129,7 +129,9 @@ public:
    * the kernel's center, exp(-beta) is a factor of column m times a factor of row n times
    * cross[(n + reach) crossStride + m + reach] = exp(-xy m n), a table of the run's conic. That
    * is one exponential per group of columns and of rows instead of one per pixel. The table
-   * must cover the boxes (|m|, |n| <= reach, a further group of lanes of zeros per row).
+   * must cover the boxes (|m|, |n| <= reach, a further group of lanes of zeros per row), and
+   * |xy| reach^2 stay below 60: that bounds the cross parts of the factors' exponents within
+   * the boxes by 30, so that they need no clamp from below (Float8::NegativeExponentialAbove).
    */
   SPLAT_ALWAYS_INLINE void BeginFactoredRun(FactoredRun& run, float centerY, int y0, int y1,
     float xx, float xy, float yy, const float* cross, int reach, int crossStride) const;
@@ -179,7 +181,14 @@ public:
   /// at the granularity of the early termination (see Add).
   SPLAT_ALWAYS_INLINE bool Integrates(int x0, int x1) const
   {
-    for (int tile = x0 / Lanes; tile <= x1 / Lanes; ++tile)
+    // The first and the last tile first, without a loop: a footprint of the sheets spans two
+    // tiles at most.
+    const int first = x0 / Lanes, last = x1 / Lanes;
+    if (this->OpenPixels[first] > 0 || this->OpenPixels[last] > 0)
+    {
+      return true;
+    }
+    for (int tile = first + 1; tile < last; ++tile)
     {
       if (this->OpenPixels[tile] > 0)
       {
@@ -320,7 +329,7 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::AddFactoredGroups(const Factored
     const Float8 m = i + static_cast<float>(m0);
     const Float8 dx = m + dxc;
     const Float8 factor =
-      Float8::NegativeExponential(run.ConicXX * dx * dx + run.ColumnSlope * m);
+      Float8::NegativeExponentialAbove(run.ConicXX * dx * dx + run.ColumnSlope * m);
     columnFactors[group] =
       Float8::SelectLess(i, Float8(static_cast<float>(columns)), factor, Float8(0.0f));
   }
@@ -329,7 +338,8 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::AddFactoredGroups(const Factored
   for (int j = 0; j < rows; j += Lanes)
   {
     (amplitude *
-      Float8::NegativeExponential(run.RowSquares[j / Lanes] + dxc * run.RowSlopes[j / Lanes]))
+      Float8::NegativeExponentialAbove(
+        run.RowSquares[j / Lanes] + dxc * run.RowSlopes[j / Lanes]))
       .Store(rowFactors + j);
   }
   const Float8 red(color.r), green(color.g), blue(color.b);

@@ -631,7 +631,8 @@ void vtkVolumeSplatRasterizer::MergeBuffers(
       this->Image[4 * p + c] = color[c];
       // Premultiplied: a color channel never exceeds alpha.
       const float v = c < 3 ? std::min(color[c], color.a) : color.a;
-      this->Colors[4 * p + c] = static_cast<std::uint8_t>(std::lround(255.0f * v));
+      // Rounded by truncation (v is in [0, 1]): std::lround was a library call per channel.
+      this->Colors[4 * p + c] = static_cast<std::uint8_t>(255.0f * v + 0.5f);
     }
   }
 }
