@@ -30,7 +30,10 @@ VolumeLayerCompositor::VolumeLayerCompositor(int width, int rowBegin, int rowEnd
   , Stride(width + Lanes)
   , Spans(rowEnd - rowBegin + 1, glm::ivec2(std::numeric_limits<int>::max(), -1))
   , LayerRows(std::numeric_limits<int>::max(), -1)
-  , OpenPixels((width + Lanes - 1) / Lanes, 0)
+  , Tiles((width + Lanes - 1) / Lanes)
+  , OpenPixels(static_cast<std::size_t>(rowEnd - rowBegin + 1) * Tiles, 0)
+  , OpenTotal(0)
+  , SelectedRows(Tiles, 0)
 {
   const std::size_t size = static_cast<std::size_t>(rowEnd - rowBegin + 1) * this->Stride;
   for (auto& sum : this->Sums)
@@ -49,13 +52,17 @@ VolumeLayerCompositor::VolumeLayerCompositor(int width, int rowBegin, int rowEnd
 void VolumeLayerCompositor::Begin(const float* weights, bool ascending, const glm::vec4* buffer)
 {
   std::fill(this->OpenPixels.begin(), this->OpenPixels.end(), 0);
+  this->OpenTotal = 0;
   for (int y = this->RowBegin; y <= this->RowEnd; ++y)
   {
     const std::size_t pixelRow = static_cast<std::size_t>(y) * this->Width;
+    int* openTiles =
+      this->OpenPixels.data() + static_cast<std::size_t>(y - this->RowBegin) * this->Tiles;
     for (int x = 0; x < this->Width; ++x)
     {
-      const std::size_t p = pixelRow + x;
-      this->OpenPixels[x / Lanes] += IsOpen(weights, ascending, buffer, p);
+      const bool open = IsOpen(weights, ascending, buffer, pixelRow + x);
+      openTiles[x / Lanes] += open;
+      this->OpenTotal += open;
     }
   }
 }
@@ -101,9 +108,11 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::ForEachGroup(const ScreenKernel&
 
 //------------------------------------------------------------------------------
 SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::UnderGroup(const float* weights, bool ascending,
-  glm::vec4* buffer, std::size_t p, int x, int lanes, const Float8& alpha, const Float8& red,
-  const Float8& green, const Float8& blue)
+  glm::vec4* buffer, std::size_t p, int x, int y, int lanes, const Float8& alpha,
+  const Float8& red, const Float8& green, const Float8& blue)
 {
+  int* openTiles =
+    this->OpenPixels.data() + static_cast<std::size_t>(y - this->RowBegin) * this->Tiles;
   if (x + Lanes > this->Width)
   {
     alignas(32) float values[4][Lanes];
@@ -113,7 +122,7 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::UnderGroup(const float* weights,
     blue.Store(values[2]);
     for (int i = 0; i < lanes; ++i)
     {
-      this->Under(weights, ascending, buffer, p + i, x + i, values[3][i],
+      this->Under(weights, ascending, buffer, p + i, x + i, openTiles, values[3][i],
         glm::vec3(values[0][i], values[1][i], values[2][i]));
     }
     return;
@@ -141,7 +150,8 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::UnderGroup(const float* weights,
     .Store(closed);
   for (int i = 0; i < Lanes; ++i)
   {
-    this->OpenPixels[(x + i) / Lanes] -= static_cast<int>(closed[i]);
+    openTiles[(x + i) / Lanes] -= static_cast<int>(closed[i]);
+    this->OpenTotal -= static_cast<int>(closed[i]);
   }
 }
 
@@ -192,7 +202,7 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Composite(
     {
       const Float8 alpha = this->Opacity(t, s.Amplitude);
       this->UnderGroup(weights, ascending, buffer, static_cast<std::size_t>(y) * this->Width + x,
-        x, std::min(Lanes, s.X1 - x + 1), alpha, alpha * red, alpha * green, alpha * blue);
+        x, y, std::min(Lanes, s.X1 - x + 1), alpha, alpha * red, alpha * green, alpha * blue);
     });
 }
 
@@ -221,7 +231,7 @@ SPLAT_VECTOR_CLONES void VolumeLayerCompositor::Flush(
       {
         zero.Store(sum.data() + q);
       }
-      this->UnderGroup(weights, ascending, buffer, pixelRow + x, x,
+      this->UnderGroup(weights, ascending, buffer, pixelRow + x, x, y,
         std::min(Lanes, span.y - x + 1), alpha, red, green, blue);
     }
     span = glm::ivec2(std::numeric_limits<int>::max(), -1);

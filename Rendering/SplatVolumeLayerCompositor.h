@@ -95,9 +95,9 @@ public:
   /// is below the termination opacity and, when weights is not null, with the traversal's sign.
   void Begin(const float* weights, bool ascending, const glm::vec4* buffer);
 
-  /// Adds kernel s to the current layer, unless every pixel of the columns it covers has stopped
-  /// integrating or does not take this traversal (early termination per tile of the band's rows
-  /// by Lanes columns): Flush would leave its sums unused.
+  /// Adds kernel s to the current layer, unless every pixel of its box has stopped integrating
+  /// or does not take this traversal (early termination per tile of Lanes columns of a row):
+  /// Flush would leave its sums unused.
   void Add(const ScreenKernel& s);
 
   /// Puts kernel s alone under the pixels, as Add and Flush would for a layer of that one
@@ -141,9 +141,9 @@ public:
    * image), as Add does. Inlined into the caller's loop over kernels (built for AVX2 too),
    * with a path of its own for footprints of at most a group of lanes by a group of rows (the
    * most at the sheets' intermediate scale): the footprints are a few pixels, and the setup a
-   * good part of them. Unlike Add it neither tests whether the kernel's columns still
-   * integrate nor grows the layer's rows and spans: its caller tests the first (Integrates)
-   * before it sets the kernel up and does the second with Touch, once for a row of kernels.
+   * good part of them. Unlike Add it neither tests whether the kernel's box still integrates
+   * nor grows the layer's rows and spans: its caller tests the first (IntegratesInRows) before
+   * it sets the kernel up and does the second with Touch, once for a row of kernels.
    */
   SPLAT_ALWAYS_INLINE void AddFactored(const FactoredRun& run, float centerX, int x0, int x1,
     float amplitude, const glm::vec3& color)
@@ -177,20 +177,44 @@ public:
     }
   }
 
-  /// Whether some pixel of the band's columns [x0, x1] (within the image) still integrates,
-  /// at the granularity of the early termination (see Add).
-  SPLAT_ALWAYS_INLINE bool Integrates(int x0, int x1) const
+  /// Whether some pixel of the band still integrates.
+  SPLAT_ALWAYS_INLINE bool Integrates() const { return this->OpenTotal > 0; }
+
+  /// Sets the rows that IntegratesInRows tests: [y0, y1], clipped to the band.
+  SPLAT_ALWAYS_INLINE void SelectRows(int y0, int y1)
   {
-    // The first and the last tile first, without a loop: a footprint of the sheets spans two
-    // tiles at most.
-    const int first = x0 / Lanes, last = x1 / Lanes;
-    if (this->OpenPixels[first] > 0 || this->OpenPixels[last] > 0)
+    std::fill(this->SelectedRows.begin(), this->SelectedRows.end(), 0);
+    const int tiles = this->Tiles;
+    for (int y = std::max(y0, this->RowBegin); y <= std::min(y1, this->RowEnd); ++y)
     {
-      return true;
+      const int* row =
+        this->OpenPixels.data() + static_cast<std::ptrdiff_t>(y - this->RowBegin) * tiles;
+      for (int tile = 0; tile < tiles; ++tile)
+      {
+        this->SelectedRows[tile] += row[tile];
+      }
     }
-    for (int tile = first + 1; tile < last; ++tile)
+  }
+
+  /// Integrates for columns [x0, x1] of the rows SelectRows set, until the current layer is
+  /// flushed (when pixels close): for kernels whose rows lie within those, one test per kernel
+  /// as cheap as for a single row.
+  SPLAT_ALWAYS_INLINE bool IntegratesInRows(int x0, int x1) const
+  {
+    return IntegratesIn(this->SelectedRows.data(), x0, x1);
+  }
+
+private:
+  /// Whether some pixel of columns [x0, x1] (within the image) of rows [y0, y1] (clipped to the
+  /// band here) still integrates, at the granularity of the early termination (see Add).
+  SPLAT_ALWAYS_INLINE bool IntegratesInBox(int x0, int x1, int y0, int y1) const
+  {
+    const int tiles = this->Tiles;
+    const int* row = this->OpenPixels.data() +
+      static_cast<std::ptrdiff_t>(std::max(y0, this->RowBegin) - this->RowBegin) * tiles;
+    for (int y = std::max(y0, this->RowBegin); y <= std::min(y1, this->RowEnd); ++y, row += tiles)
     {
-      if (this->OpenPixels[tile] > 0)
+      if (IntegratesIn(row, x0, x1))
       {
         return true;
       }
@@ -198,11 +222,10 @@ public:
     return false;
   }
 
-private:
-  /// Whether some pixel of the columns kernel s covers still integrates (see Add).
+  /// Whether some pixel of kernel s's box still integrates (see Add).
   SPLAT_ALWAYS_INLINE bool Reaches(const ScreenKernel& s) const
   {
-    return this->Integrates(s.X0, s.X1);
+    return this->IntegratesInBox(s.X0, s.X1, s.Y0, s.Y1);
   }
 
   /// The sums (red, green, blue, optical depth) from band offset q on.
@@ -210,6 +233,27 @@ private:
   {
     return { this->Sums[0].data() + q, this->Sums[1].data() + q, this->Sums[2].data() + q,
       this->Sums[3].data() + q };
+  }
+
+  /// Whether openTiles (open pixels per tile of a row, or of rows) has some for columns
+  /// [x0, x1].
+  SPLAT_ALWAYS_INLINE static bool IntegratesIn(const int* openTiles, int x0, int x1)
+  {
+    // The first and the last tile first, without a loop: a footprint of the sheets spans two
+    // tiles at most.
+    const int first = x0 / Lanes, last = x1 / Lanes;
+    if (openTiles[first] > 0 || openTiles[last] > 0)
+    {
+      return true;
+    }
+    for (int tile = first + 1; tile < last; ++tile)
+    {
+      if (openTiles[tile] > 0)
+      {
+        return true;
+      }
+    }
+    return false;
   }
 
   /// Adds optical depths t times the color to the eight pixels of `sums` from offset q.
@@ -240,28 +284,31 @@ private:
   template <typename Visit>
   SPLAT_ALWAYS_INLINE void ForEachGroup(const ScreenKernel& s, Visit&& visit);
 
-  /// Puts a layer of opacity alpha and color `color` (times alpha) under pixel p (column x)
-  /// of `buffer`, where it is open. Without branches: which pixels of a footprint's rim or of
-  /// the list's blend region are open is hard to predict.
+  /// Puts a layer of opacity alpha and color `color` (times alpha) under pixel p (column x,
+  /// whose row's open pixels per tile are openTiles) of `buffer`, where it is open. Without
+  /// branches: which pixels of a footprint's rim or of the list's blend region are open is hard
+  /// to predict.
   SPLAT_ALWAYS_INLINE void Under(const float* weights, bool ascending, glm::vec4* buffer,
-    std::size_t p, int x, float alpha, const glm::vec3& color)
+    std::size_t p, int x, int* openTiles, float alpha, const glm::vec3& color)
   {
     glm::vec4& c = buffer[p];
     const bool open = alpha > 0.0f && IsOpen(weights, ascending, buffer, p);
     const float transmittance = open ? 1.0f - c.a : 0.0f;
     c += glm::vec4(transmittance * color, transmittance * alpha);
-    this->OpenPixels[x / Lanes] -= open && c.a >= TerminationAlpha;
+    const bool closed = open && c.a >= TerminationAlpha;
+    openTiles[x / Lanes] -= closed;
+    this->OpenTotal -= closed;
   }
 
   /**
-   * Under for the pixels of `buffer` from p (column x) with opacities alpha and colors (times
-   * alpha) red, green and blue, lane by lane: eight pixels as vectors where they lie within
-   * the image's row (a lane of zero opacity leaves its pixel as it is), the first `lanes` one
-   * by one otherwise.
+   * Under for the pixels of `buffer` from p (column x of row y) with opacities alpha and colors
+   * (times alpha) red, green and blue, lane by lane: eight pixels as vectors where they lie
+   * within the image's row (a lane of zero opacity leaves its pixel as it is), the first
+   * `lanes` one by one otherwise.
    */
   SPLAT_ALWAYS_INLINE void UnderGroup(const float* weights, bool ascending, glm::vec4* buffer,
-    std::size_t p, int x, int lanes, const Float8& alpha, const Float8& red, const Float8& green,
-    const Float8& blue);
+    std::size_t p, int x, int y, int lanes, const Float8& alpha, const Float8& red,
+    const Float8& green, const Float8& blue);
 
   /// The opacity of optical depths t, which are at most `largest` (peak opacities in the peak
   /// model).
@@ -283,7 +330,10 @@ private:
   std::array<std::vector<float>, 4> Sums;
   std::vector<glm::ivec2> Spans; // per band row: the columns the layer touched
   glm::ivec2 LayerRows;           // the band rows the layer touched (first, last)
-  std::vector<int> OpenPixels;    // per tile of Lanes columns: its open pixels (see Begin)
+  int Tiles;                      // tiles of Lanes columns in a row
+  std::vector<int> OpenPixels;    // per band row and tile: its open pixels (see Begin)
+  int OpenTotal;                  // the band's open pixels
+  std::vector<int> SelectedRows;  // per tile: the open pixels of the rows SelectRows set
 };
 
 //------------------------------------------------------------------------------

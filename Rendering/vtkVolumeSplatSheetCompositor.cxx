@@ -387,7 +387,7 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
   for (int n = 0; n < sheets; ++n)
   {
     // Where the whole band has stopped integrating the sheets behind add nothing.
-    if (!compositor.Integrates(0, l.Size.x - 1))
+    if (!compositor.Integrates())
     {
       break;
     }
@@ -418,16 +418,22 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
       // stopped integrating (behind the opaque parts, or where no pixel takes the list).
       const glm::ivec2 span = columns(static_cast<float>(rowSpans[r] & 0xffffu),
         static_cast<float>(rowSpans[r] >> 16), s.HalfExtent);
-      if (starts[r] == starts[r + 1] || span.x > span.y || !compositor.Integrates(span.x, span.y))
+      const float v = static_cast<float>(row);
+      kernel.CenterY = s.Scale * v + offset.y;
+      const glm::ivec2 spanRows(static_cast<int>(std::ceil(kernel.CenterY - s.HalfExtent.y - 0.5f)),
+        static_cast<int>(std::floor(kernel.CenterY + s.HalfExtent.y - 0.5f)));
+      if (starts[r] == starts[r + 1] || span.x > span.y)
       {
         continue;
       }
-      const float v = static_cast<float>(row);
+      // The voxels' footprints lie within the row's rows.
+      compositor.SelectRows(spanRows.x, spanRows.y);
+      if (!compositor.IntegratesInRows(span.x, span.y))
+      {
+        continue;
+      }
       const Footprint* rowFootprints = footprints + static_cast<int>(v * l.TileScale.y) * Tiles;
-      kernel.CenterY = s.Scale * v + offset.y;
-      compositor.Touch(span.x, span.y,
-        static_cast<int>(std::ceil(kernel.CenterY - s.HalfExtent.y - 0.5f)),
-        static_cast<int>(std::floor(kernel.CenterY + s.HalfExtent.y - 0.5f)));
+      compositor.Touch(span.x, span.y, spanRows.x, spanRows.y);
       // The path length along a voxel's ray per unit of index along the list's axis is
       // |path + u pathPerColumn|.
       const glm::vec3 path = this->Perspective
@@ -459,7 +465,7 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
           }
         }
         const glm::ivec2 x = columns(u, u, f->HalfExtent);
-        if (x.x > x.y || !compositor.Integrates(x.x, x.y))
+        if (x.x > x.y || !compositor.IntegratesInRows(x.x, x.y))
         {
           continue;
         }
