@@ -266,7 +266,7 @@ private:
     (Float8::Load(sums[2] + q) + t * blue).Store(sums[2] + q);
   }
 
-  /// AddFactored for footprints of at most maximumGroups groups of lanes and of rows.
+  /// AddFactored for footprints of at most MaximumGroups groups of Lanes columns and rows.
   template <int MaximumGroups>
   SPLAT_ALWAYS_INLINE void AddFactoredGroups(const FactoredRun& run, float centerX, int x0,
     int x1, float amplitude, const glm::vec3& color);

@@ -420,7 +420,8 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
         static_cast<float>(rowSpans[r] >> 16), s.HalfExtent);
       const float v = static_cast<float>(row);
       kernel.CenterY = s.Scale * v + offset.y;
-      const glm::ivec2 spanRows(static_cast<int>(std::ceil(kernel.CenterY - s.HalfExtent.y - 0.5f)),
+      const glm::ivec2 spanRows(
+        static_cast<int>(std::ceil(kernel.CenterY - s.HalfExtent.y - 0.5f)),
         static_cast<int>(std::floor(kernel.CenterY + s.HalfExtent.y - 0.5f)));
       if (starts[r] == starts[r + 1] || span.x > span.y)
       {
