@@ -280,17 +280,19 @@ inline std::vector<Case> Cases(
 }
 
 // The cases of the volume scenes: vtkVolumeSplatMapper in every ordering mode on each backend
-// (the CPU's blended mode is the default), cutoffs other than the default and the exact
-// per-kernel path for image data (sheets=off) on the CPU, and VTK's ray casters on the grid,
-// sampling their rays every voxel spacing and every quarter of it.
+// (the CPU's blended mode is the default), cutoffs other than the default, the sheets of image
+// data one by one (merging=off) and the exact per-kernel path (sheets=off) on the CPU, and VTK's
+// ray casters on the grid, sampling their rays every voxel spacing and every quarter of it.
 inline std::vector<Case> VolumeCases(const std::vector<std::string>& backends)
 {
   const int allThreads = AllThreads();
   std::vector<Case> cases;
-  const auto splat = [](int backend, int ordering, double cutoff, bool sheets = true)
+  const auto splat =
+    [](int backend, int ordering, double cutoff, bool sheets = true, bool merging = true)
   {
-    return [=](const VolumeInputs& in) -> vtkSmartPointer<vtkAbstractVolumeMapper>
-    { return splatexample::VolumeSplat(in.Kernels, backend, ordering, cutoff, sheets); };
+    return [=](const VolumeInputs& in) -> vtkSmartPointer<vtkAbstractVolumeMapper> {
+      return splatexample::VolumeSplat(in.Kernels, backend, ordering, cutoff, sheets, merging);
+    };
   };
   vtkNew<vtkVolumeSplatMapper> probe;
   const double defaultCutoff = probe->GetCutoff();
@@ -317,7 +319,11 @@ inline std::vector<Case> VolumeCases(const std::vector<std::string>& backends)
         c.MakeVolume = splat(backend, probe->GetOrderingMode(), cutoff);
         cases.push_back(c);
       }
-      // Image data's voxels splatted one by one on the screen (SheetResampling off).
+      // Image data's sheets composited one by one (SheetMerging off), and its voxels splatted
+      // one by one on the screen (SheetResampling off).
+      Case sheets{ "vtkVolumeSplatMapper", name, "merging", "merging=off", allThreads };
+      sheets.MakeVolume = splat(backend, probe->GetOrderingMode(), 0.0, true, false);
+      cases.push_back(sheets);
       Case exact{ "vtkVolumeSplatMapper", name, "sheets", "sheets=off", allThreads };
       exact.MakeVolume = splat(backend, probe->GetOrderingMode(), 0.0, false);
       cases.push_back(exact);

@@ -101,15 +101,17 @@ inline const std::array<int, 4>& OrderingModes()
 }
 
 /// vtkVolumeSplatMapper on `input` with a backend, an ordering mode, a cutoff (<= 0: the
-/// default) and its SheetResampling (off: the exact per-kernel path for image data).
-inline vtkSmartPointer<vtkVolumeSplatMapper> VolumeSplat(
-  vtkDataSet* input, int backend, int ordering, double cutoff = 0.0, bool sheets = true)
+/// default), its SheetResampling (off: the exact per-kernel path for image data) and its
+/// SheetMerging (off: the sheets one by one).
+inline vtkSmartPointer<vtkVolumeSplatMapper> VolumeSplat(vtkDataSet* input, int backend,
+  int ordering, double cutoff = 0.0, bool sheets = true, bool merging = true)
 {
   auto mapper = vtkSmartPointer<vtkVolumeSplatMapper>::New();
   mapper->SetInputData(input);
   mapper->SetBackend(backend);
   mapper->SetOrderingMode(ordering);
   mapper->SetSheetResampling(sheets);
+  mapper->SetSheetMerging(merging);
   if (cutoff > 0.0)
   {
     mapper->SetCutoff(cutoff);

@@ -113,13 +113,15 @@ public:
   {
     int Rows;        // the band rows the footprints cover, from FirstRow (none when zero)
     int FirstRow;    // as a band offset
-    float ConicXX;
+    float ConicXX, ConicXY, ConicYY;
     float ColumnSlope; // ConicXY times the centers' offset along y from their pixel's center
     const float* Cross; // the cross table at the first row and the centers' column
     int CrossStride;
-    // Per row from the first, dy its offset from the centers: ConicYY dy^2 and ConicXY dy.
+    // Per row from the first, dy its offset from the centers: ConicYY dy^2, ConicXY dy and
+    // -2 ConicYY dy (for a kernel's own shift along y).
     Float8 RowSquares[MaximumFactoredColumns / Lanes];
     Float8 RowSlopes[MaximumFactoredColumns / Lanes];
+    Float8 RowShifts[MaximumFactoredColumns / Lanes];
   };
 
   /**
@@ -137,7 +139,8 @@ public:
     float xx, float xy, float yy, const float* cross, int reach, int crossStride) const;
 
   /**
-   * Adds the kernel of run `run` centered on column centerX, over columns [x0, x1] (within the
+   * Adds the kernel of run `run` centered on column centerX and shifted by shiftY from the
+   * run's row of centers (the run's rows must hold its box), over columns [x0, x1] (within the
    * image), as Add does. Inlined into the caller's loop over kernels (built for AVX2 too),
    * with a path of its own for footprints of at most a group of lanes by a group of rows (the
    * most at the sheets' intermediate scale): the footprints are a few pixels, and the setup a
@@ -145,17 +148,17 @@ public:
    * nor grows the layer's rows and spans: its caller tests the first (IntegratesInRows) before
    * it sets the kernel up and does the second with Touch, once for a row of kernels.
    */
-  SPLAT_ALWAYS_INLINE void AddFactored(const FactoredRun& run, float centerX, int x0, int x1,
-    float amplitude, const glm::vec3& color)
+  SPLAT_ALWAYS_INLINE void AddFactored(const FactoredRun& run, float centerX, float shiftY,
+    int x0, int x1, float amplitude, const glm::vec3& color)
   {
     if (x1 - x0 < Lanes && run.Rows <= Lanes)
     {
-      this->AddFactoredGroups<1>(run, centerX, x0, x1, amplitude, color);
+      this->AddFactoredGroups<1>(run, centerX, shiftY, x0, x1, amplitude, color);
     }
     else
     {
       this->AddFactoredGroups<MaximumFactoredColumns / Lanes>(
-        run, centerX, x0, x1, amplitude, color);
+        run, centerX, shiftY, x0, x1, amplitude, color);
     }
   }
 
@@ -268,8 +271,8 @@ private:
 
   /// AddFactored for footprints of at most MaximumGroups groups of Lanes columns and rows.
   template <int MaximumGroups>
-  SPLAT_ALWAYS_INLINE void AddFactoredGroups(const FactoredRun& run, float centerX, int x0,
-    int x1, float amplitude, const glm::vec3& color);
+  SPLAT_ALWAYS_INLINE void AddFactoredGroups(const FactoredRun& run, float centerX,
+    float shiftY, int x0, int x1, float amplitude, const glm::vec3& color);
 
   static bool IsOpen(const float* weights, bool ascending, const glm::vec4* buffer, std::size_t p)
   {
@@ -350,6 +353,8 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::BeginFactoredRun(FactoredRun& ru
   const float dyc = yc + 0.5f - centerY;
   const int n0 = y0 - yc;
   run.ConicXX = xx;
+  run.ConicXY = xy;
+  run.ConicYY = yy;
   run.ColumnSlope = xy * dyc;
   run.Cross = cross + static_cast<std::ptrdiff_t>(n0 + reach) * crossStride + reach;
   run.CrossStride = crossStride;
@@ -358,19 +363,24 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::BeginFactoredRun(FactoredRun& ru
     const Float8 dy = Float8::Iota() + static_cast<float>(n0 + j) + dyc;
     run.RowSquares[j / Lanes] = yy * dy * dy;
     run.RowSlopes[j / Lanes] = xy * dy;
+    run.RowShifts[j / Lanes] = (-2.0f * yy) * dy;
   }
 }
 
 //------------------------------------------------------------------------------
 template <int MaximumGroups>
 SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::AddFactoredGroups(const FactoredRun& run,
-  float centerX, int x0, int x1, float amplitude, const glm::vec3& color)
+  float centerX, float shiftY, int x0, int x1, float amplitude, const glm::vec3& color)
 {
   const int columns = x1 - x0 + 1;
   const int groups = MaximumGroups == 1 ? 1 : (columns + Lanes - 1) / Lanes;
   const int xc = static_cast<int>(std::floor(centerX));
   const float dxc = xc + 0.5f - centerX;
   const int m0 = x0 - xc;
+  // With the kernel's rows at dy - shiftY, the exponent gains -ConicXY shiftY m in its columns
+  // and shiftY (-2 ConicYY dy + ConicYY shiftY - ConicXY dxc) in its rows.
+  const float columnSlope = run.ColumnSlope - run.ConicXY * shiftY;
+  const float rowShift = shiftY * (run.ConicYY * shiftY - run.ConicXY * dxc);
   const Float8 lane = Float8::Iota();
   Float8 columnFactors[MaximumGroups];
   for (int group = 0; group < groups; ++group)
@@ -379,7 +389,7 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::AddFactoredGroups(const Factored
     const Float8 m = i + static_cast<float>(m0);
     const Float8 dx = m + dxc;
     const Float8 factor =
-      Float8::NegativeExponentialAbove(run.ConicXX * dx * dx + run.ColumnSlope * m);
+      Float8::NegativeExponentialAbove(run.ConicXX * dx * dx + columnSlope * m);
     columnFactors[group] =
       Float8::SelectLess(i, Float8(static_cast<float>(columns)), factor, Float8(0.0f));
   }
@@ -388,8 +398,8 @@ SPLAT_ALWAYS_INLINE void VolumeLayerCompositor::AddFactoredGroups(const Factored
   for (int j = 0; j < rows; j += Lanes)
   {
     (amplitude *
-      Float8::NegativeExponentialAbove(
-        run.RowSquares[j / Lanes] + dxc * run.RowSlopes[j / Lanes]))
+      Float8::NegativeExponentialAbove(run.RowSquares[j / Lanes] +
+        dxc * run.RowSlopes[j / Lanes] + shiftY * run.RowShifts[j / Lanes] + rowShift))
       .Store(rowFactors + j);
   }
   const Float8 red(color.r), green(color.g), blue(color.b);

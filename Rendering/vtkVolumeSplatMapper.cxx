@@ -315,6 +315,22 @@ bool vtkVolumeSplatMapper::GetSheetResampling()
 }
 
 //------------------------------------------------------------------------------
+void vtkVolumeSplatMapper::SetSheetMerging(bool on)
+{
+  if (on != this->Rasterizer->GetSheetMerging())
+  {
+    this->Rasterizer->SetSheetMerging(on);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkVolumeSplatMapper::GetSheetMerging()
+{
+  return this->Rasterizer->GetSheetMerging();
+}
+
+//------------------------------------------------------------------------------
 void vtkVolumeSplatMapper::SetCutoff(double cutoff)
 {
   if (cutoff != this->Rasterizer->GetCutoff())
@@ -945,6 +961,7 @@ void vtkVolumeSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OrderingMode: " << this->GetOrderingMode() << "\n";
   os << indent << "BlendThreshold: " << this->GetBlendThreshold() << "\n";
   os << indent << "SheetResampling: " << this->GetSheetResampling() << "\n";
+  os << indent << "SheetMerging: " << this->GetSheetMerging() << "\n";
   os << indent << "Cutoff: " << this->GetCutoff() << "\n";
   os << indent << "Backend: " << vtkSplatBackend::GetBackendAsString(this->Backend) << "\n";
   os << indent << "LastBackend: " << vtkSplatBackend::GetBackendAsString(this->LastBackend)

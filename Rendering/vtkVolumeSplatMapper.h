@@ -167,6 +167,18 @@ public:
 
   ///@{
   /**
+   * With SheetResampling: composite each list's sheets merged by pairs along its axis, each
+   * pair of voxels one kernel at their strength-weighted center with their summed strength and
+   * strength-weighted color, half the footprints of the sheets
+   * (vtkVolumeSplatSheetCompositor). Off composites every sheet. Default on.
+   */
+  void SetSheetMerging(bool on);
+  bool GetSheetMerging();
+  vtkBooleanMacro(SheetMerging, bool);
+  ///@}
+
+  ///@{
+  /**
    * Cutoff on the footprint exponent 1/2 x^T M^-1 x, as for vtkSurfaceSplatMapper. Default 4.5,
    * three standard deviations (see splat::DefaultVolumeCutoff).
    */

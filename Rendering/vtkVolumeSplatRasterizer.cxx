@@ -652,6 +652,7 @@ bool vtkVolumeSplatRasterizer::RenderSheets(const Camera& camera, const std::arr
   const double nearestSceneDepth =
     splat::EyeDepthsOfWindowDepths(glm::inverse(camera.EyeToClip), { nearestWindowDepth })[0];
   vtkVolumeSplatSheetCompositor* sheets = this->Internal->Sheets;
+  sheets->SetMergePairs(this->SheetMerging);
   if (!sheets->BeginFrame(input, camera, this->Cutoff, nearestSceneDepth,
         { used[0], used[1], used[2] }))
   {
@@ -771,6 +772,7 @@ void vtkVolumeSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BlendThreshold: " << this->BlendThreshold << "\n";
   os << indent << "Cutoff: " << this->Cutoff << "\n";
   os << indent << "SheetResampling: " << this->SheetResampling << "\n";
+  os << indent << "SheetMerging: " << this->SheetMerging << "\n";
   os << indent << "SheetsUsed: " << this->SheetsUsed << "\n";
   os << indent << "Kernels: " << this->Input.Count << "\n";
   os << indent << "Shaded: " << (this->Input.Normals != nullptr) << "\n";

@@ -122,6 +122,16 @@ public:
   vtkBooleanMacro(SheetResampling, bool);
   ///@}
 
+  ///@{
+  /**
+   * With SheetResampling: the sheets merged by pairs along each list's axis
+   * (vtkVolumeSplatSheetCompositor::SetMergePairs). Default on.
+   */
+  vtkSetMacro(SheetMerging, bool);
+  vtkGetMacro(SheetMerging, bool);
+  vtkBooleanMacro(SheetMerging, bool);
+  ///@}
+
   /**
    * Whether the last frame went through the sheets (SheetResampling).
    */
@@ -282,6 +292,7 @@ protected:
   double Cutoff;
   int MaximumSphericalHarmonicsDegree = 3;
   bool SheetResampling = true;
+  bool SheetMerging = true;
   bool SheetsUsed = false;
 
   Kernels Input;

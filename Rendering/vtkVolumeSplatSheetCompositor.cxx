@@ -61,13 +61,34 @@ struct Footprint
   int Reach;
 };
 
-// Where one sheet lands on the intermediate image: voxel (u, v) at Scale (u, v) + Offset; the
-// largest half extent of its footprints.
-struct Sheet
+// A layer of the traversal, a sheet or a merged pair of sheets, at Position along the list's
+// axis (index units), and where it lands on the intermediate image: voxel (u, v) at
+// Scale (u, v) + Offset. A pair's kernels lie up to half a sheet off that position along the
+// axis; Shift bounds where that puts their centers on the image. HalfExtent is its footprints'
+// largest reach from the lattice point, Shift included.
+struct Layer
 {
+  float Position;
   float Scale;
   glm::vec2 Offset;
+  glm::vec2 Shift;
   glm::vec2 HalfExtent;
+};
+
+// Per list, built from the kernels: each entry's (u, v) in its layer packed as u + 65536 v,
+// per layer and row v the first entry at or after it, and per layer and row the smallest and
+// largest u of its entries, packed as the lattice. Where the colors change: each entry's color
+// and strength in this order, so that the compositing reads them in sequence (the X and Y
+// lists would gather them from all over memory), and the colors they came from; for pairs,
+// each entry's offset along the axis from the pair's middle (its strength-weighted center).
+struct Tables
+{
+  std::vector<std::uint32_t> Lattice;
+  std::vector<vtkIdType> RowStarts;
+  std::vector<std::uint32_t> RowSpans;
+  std::vector<glm::vec4> Values;
+  std::vector<float> Shifts;
+  const float* Colors = nullptr;
 };
 }
 
@@ -84,28 +105,21 @@ struct vtkVolumeSplatSheetCompositor::Internals
   glm::dvec3 Direction{ 0.0 }; // parallel: the view direction in index coordinates
   glm::dmat3 IndexCovariance{ 1.0 };
 
-  // Per list, built from the kernels once: each list entry's (u, v) in its sheet packed as
-  // u + 65536 v, and per sheet and row v the first list entry at or after it.
-  std::array<std::vector<std::uint32_t>, 3> Lattice;
-  // Per list, each entry's color and strength, in list order so that the compositing reads
-  // them in sequence (the X and Y lists would gather them from all over memory), and the
-  // colors they came from.
-  std::array<std::vector<glm::vec4>, 3> Values;
-  std::array<const float*, 3> ValueColors{};
-  std::array<std::vector<vtkIdType>, 3> RowStarts;
-  // Per list, sheet and row: the smallest and largest u of its entries, packed as the lattice.
-  std::array<std::vector<std::uint32_t>, 3> RowSpans;
+  // Per list: its sheets (entries in list order) and the sheets merged by pairs.
+  std::array<Tables, 3> Sheets, Pairs;
+  bool MergePairs = true;
 
   // Per list, per frame.
   struct List
   {
     bool Ascending = true;
+    bool Pairs = false; // the layers are the sheets merged by pairs
     int Reference = 0; // the front sheet, whose plane holds the intermediate image
     double Resolution = 1.0; // intermediate pixels per lattice unit of the front sheet
     glm::dvec2 Origin{ 0.0 }; // intermediate pixel (X, Y) has its center at Origin + (X, Y) + 0.5
     glm::ivec2 Size{ 0 };
-    std::vector<Sheet> Sheets;
-    std::vector<Footprint> Footprints; // per sheet, Tiles x Tiles, row by row
+    std::vector<Layer> Layers;
+    std::vector<Footprint> Footprints; // per layer, Tiles x Tiles, row by row
     glm::vec2 TileScale{ 0.0f };       // tiles per lattice unit along u and v
     std::vector<float> Cross;
   };
@@ -116,6 +130,11 @@ struct vtkVolumeSplatSheetCompositor::Internals
   // The frame's geometry of list `list`; false where the sheets do not apply.
   bool MakeList(int list);
   void BuildTables(int list, const std::vector<vtkIdType>& order);
+  // The sheets' values of list `list` (entries `order`) for `colors`.
+  void CopyValues(int list, const std::vector<vtkIdType>& order, const float* colors);
+  // The pairs' tables of list `list` (entries `order`) from the sheets', their values for
+  // `colors`.
+  void BuildPairs(int list, const std::vector<vtkIdType>& order, const float* colors);
   // Per screen pixel taking list `list` in its traversal's direction, where its ray meets the
   // intermediate image, in pixels; Unused elsewhere.
   void FindSamples(int list, const float* weights);
@@ -131,8 +150,14 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
   const glm::ivec3 dimensions = this->Input.GridDimensions;
   const int sheets = dimensions[list];
   const glm::dmat3& S = this->IndexCovariance;
-  const double reach = std::sqrt(2.0 * this->Cutoff * S[list][list]) + 0.5;
   List& l = this->Lists[list];
+  l.Pairs = this->MergePairs && sheets > 1;
+  // A lone last sheet is a layer as it is.
+  const int layers = l.Pairs ? (sheets + 1) / 2 : sheets;
+  const auto merged = [&](int layer) { return l.Pairs && 2 * layer + 1 < sheets; };
+  const auto position = [&](int layer)
+  { return l.Pairs ? 2.0 * layer + (merged(layer) ? 0.5 : 0.0) : static_cast<double>(layer); };
+  const double reach = std::sqrt(2.0 * this->Cutoff * S[list][list]) + 0.5;
   // The eye outside the slab of sheets: every ray meeting the kernels crosses them in one order.
   if (this->Perspective)
   {
@@ -166,17 +191,18 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
   const glm::dvec2 extent(dimensions[axes.x] - 1, dimensions[axes.y] - 1);
   glm::dvec2 lo(std::numeric_limits<double>::infinity());
   glm::dvec2 hi(-std::numeric_limits<double>::infinity());
-  // Per sheet and tile, the voxel's Gaussian integrated along the rays (their direction per
+  // Per layer and tile, the voxel's Gaussian integrated along the rays (their direction per
   // unit of index along the list's axis at the tile's center, t) as a density on the sheet's
   // lattice, plus the screen's low-pass filter, a unit pixel, mapped onto the sheet there.
   const int u = axes.x, v = axes.y, a = list;
   const glm::dvec2 tileSize = (extent + 1.0) / static_cast<double>(Tiles);
   l.TileScale = glm::vec2(1.0 / tileSize);
-  std::vector<glm::dmat2> lattices(static_cast<std::size_t>(sheets) * Tiles * Tiles);
+  std::vector<glm::dmat2> lattices(static_cast<std::size_t>(layers) * Tiles * Tiles);
   for (std::size_t f = 0; f < lattices.size(); ++f)
   {
-    const int k = static_cast<int>(f / (Tiles * Tiles));
+    const int layer = static_cast<int>(f / (Tiles * Tiles));
     const int tile = static_cast<int>(f % (Tiles * Tiles));
+    const double k = position(layer);
     const glm::dvec2 center =
       (glm::dvec2(tile % Tiles, tile / Tiles) + 0.5) * tileSize - 0.5;
     const glm::dvec2 t =
@@ -210,34 +236,41 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
   // The intermediate image's pixels per lattice unit of the front sheet: SamplesPerSigma along
   // the narrowest footprint there, so that the warp follows the footprints' shape.
   double narrowest = std::numeric_limits<double>::infinity();
+  const int front = l.Ascending ? 0 : layers - 1;
   for (int tile = 0; tile < Tiles * Tiles; ++tile)
   {
-    const glm::dmat2& front = lattices[l.Reference * Tiles * Tiles + tile];
-    narrowest =
-      std::min(narrowest, front[0][0] + front[1][1] - splat::LargestEigenvalue(front));
+    const glm::dmat2& f = lattices[front * Tiles * Tiles + tile];
+    narrowest = std::min(narrowest, f[0][0] + f[1][1] - splat::LargestEigenvalue(f));
   }
   l.Resolution = SamplesPerSigma / std::sqrt(narrowest);
   if (!std::isfinite(l.Resolution))
   {
     return false;
   }
-  l.Sheets.resize(sheets);
+  l.Layers.resize(layers);
   l.Footprints.resize(lattices.size());
   l.Cross.clear();
-  for (int k = 0; k < sheets; ++k)
+  for (int layer = 0; layer < layers; ++layer)
   {
-    Sheet& s = l.Sheets[k];
-    // Voxel p of sheet k lands on the front sheet's plane at p' = scale p + offset (lattice
+    Layer& s = l.Layers[layer];
+    const double k = position(layer);
+    // Voxel p of the layer lands on the front sheet's plane at p' = scale p + offset (lattice
     // units of the front sheet), and on the intermediate image at Resolution p'.
     const double scale = this->Perspective ? eyeOffset / (k - this->Eye[list]) : 1.0;
-    const glm::dvec2 offset = this->Perspective ? (1.0 - scale) * eyeUV
-                                                : -static_cast<double>(k - l.Reference) * shear;
+    const glm::dvec2 offset =
+      this->Perspective ? (1.0 - scale) * eyeUV : -(k - l.Reference) * shear;
+    s.Position = static_cast<float>(k);
     s.Scale = static_cast<float>(l.Resolution * scale);
     s.Offset = glm::vec2(l.Resolution * offset);
+    // A kernel d off the layer along the axis lands -d t Scale off its lattice point.
+    const glm::dvec2 largestT = this->Perspective
+      ? glm::max(glm::abs(eyeUV), glm::abs(extent - eyeUV)) / std::abs(k - this->Eye[list])
+      : glm::abs(shear);
+    s.Shift = glm::vec2(merged(layer) ? 0.5 * s.Scale * largestT : glm::dvec2(0.0));
     s.HalfExtent = glm::vec2(0.0f);
     for (int tile = 0; tile < Tiles * Tiles; ++tile)
     {
-      const std::size_t index = static_cast<std::size_t>(k) * Tiles * Tiles + tile;
+      const std::size_t index = static_cast<std::size_t>(layer) * Tiles * Tiles + tile;
       const glm::dmat2& lattice = lattices[index];
       Footprint& footprint = l.Footprints[index];
       const glm::dmat2 intermediate = (l.Resolution * l.Resolution * scale * scale) * lattice;
@@ -247,10 +280,11 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
       footprint.ConicYY = static_cast<float>(0.5 * conic[1][1]);
       footprint.HalfExtent = glm::vec2(std::sqrt(2.0 * this->Cutoff * intermediate[0][0]),
         std::sqrt(2.0 * this->Cutoff * intermediate[1][1]));
-      s.HalfExtent = glm::max(s.HalfExtent, footprint.HalfExtent);
-      // exp(-ConicXY m n) over the box's offsets from the pixel holding a voxel's center.
-      const int reach = static_cast<int>(
-                          std::ceil(std::max(footprint.HalfExtent.x, footprint.HalfExtent.y))) +
+      s.HalfExtent = glm::max(s.HalfExtent, footprint.HalfExtent + s.Shift);
+      // exp(-ConicXY m n) over the box's offsets from the pixel holding a voxel's center (for
+      // the rows, the run's center: a pair's kernel may lie Shift off it).
+      const int reach = static_cast<int>(std::ceil(std::max(
+                          footprint.HalfExtent.x, footprint.HalfExtent.y + s.Shift.y))) +
         1;
       const bool factored = std::abs(footprint.ConicXY) * reach * reach < 60.0f &&
         2 * reach + 1 + 8 <= splat::VolumeLayerCompositor::MaximumFactoredColumns;
@@ -297,11 +331,12 @@ void vtkVolumeSplatSheetCompositor::Internals::BuildTables(
   const glm::ivec2 axes = SheetAxes(list);
   const vtkIdType rows = dimensions[axes.y];
   const vtkIdType nx = dimensions.x, ny = dimensions.y;
-  std::vector<std::uint32_t>& lattice = this->Lattice[list];
-  std::vector<vtkIdType>& starts = this->RowStarts[list];
+  Tables& tables = this->Sheets[list];
+  std::vector<std::uint32_t>& lattice = tables.Lattice;
+  std::vector<vtkIdType>& starts = tables.RowStarts;
   lattice.resize(order.size());
   starts.assign(static_cast<std::size_t>(dimensions[list] * rows + 1), 0);
-  std::vector<std::uint32_t>& spans = this->RowSpans[list];
+  std::vector<std::uint32_t>& spans = tables.RowSpans;
   spans.assign(static_cast<std::size_t>(dimensions[list] * rows), 0xffffu);
   const vtkIdType* ids = this->Input.GridIds;
   for (std::size_t n = 0; n < order.size(); ++n)
@@ -317,6 +352,114 @@ void vtkVolumeSplatSheetCompositor::Internals::BuildTables(
     spans[row] = std::min(spans[row] & 0xffffu, u) | (std::max(spans[row] >> 16, u) << 16);
   }
   std::partial_sum(starts.begin(), starts.end(), starts.begin());
+  tables.Colors = nullptr;
+  this->Pairs[list] = Tables();
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatSheetCompositor::Internals::CopyValues(
+  int list, const std::vector<vtkIdType>& order, const float* colors)
+{
+  std::vector<glm::vec4>& values = this->Sheets[list].Values;
+  values.resize(order.size());
+  const float* strengths = this->Input.Strengths;
+  vtkSMPTools::For(0, static_cast<vtkIdType>(order.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType e = begin; e < end; ++e)
+      {
+        const vtkIdType id = order[e];
+        values[e] =
+          glm::vec4(colors[3 * id], colors[3 * id + 1], colors[3 * id + 2], strengths[id]);
+      }
+    });
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatSheetCompositor::Internals::BuildPairs(
+  int list, const std::vector<vtkIdType>& order, const float* colors)
+{
+  const Tables& sheets = this->Sheets[list];
+  Tables& pairs = this->Pairs[list];
+  const int count = this->Input.GridDimensions[list];
+  const vtkIdType rows = this->Input.GridDimensions[SheetAxes(list).y];
+  const vtkIdType pairRows = (count + 1) / 2 * rows;
+  // Visits the entries of row `pairRow` of the pairs: those of the row in the pair's sheets
+  // merged by u, as visit(first, second) with the entries of the lower and the upper sheet
+  // (-1 where that sheet has none at u).
+  const auto forEachEntry = [&](vtkIdType pairRow, auto&& visit)
+  {
+    const vtkIdType r = (pairRow / rows) * 2 * rows + pairRow % rows;
+    vtkIdType first = sheets.RowStarts[r];
+    const vtkIdType firstEnd = sheets.RowStarts[r + 1];
+    const bool lone = r + rows >= static_cast<vtkIdType>(sheets.RowStarts.size()) - 1;
+    vtkIdType second = lone ? 0 : sheets.RowStarts[r + rows];
+    const vtkIdType secondEnd = lone ? 0 : sheets.RowStarts[r + rows + 1];
+    while (first < firstEnd || second < secondEnd)
+    {
+      const std::uint32_t u0 = first < firstEnd ? sheets.Lattice[first] & 0xffffu : 0x10000u;
+      const std::uint32_t u1 = second < secondEnd ? sheets.Lattice[second] & 0xffffu : 0x10000u;
+      visit(u0 <= u1 ? first++ : -1, u1 <= u0 ? second++ : -1);
+    }
+  };
+  const bool built = !pairs.RowStarts.empty();
+  if (!built)
+  {
+    pairs.RowStarts.assign(pairRows + 1, 0);
+    vtkSMPTools::For(0, pairRows,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType row = begin; row < end; ++row)
+        {
+          forEachEntry(row, [&](vtkIdType, vtkIdType) { ++pairs.RowStarts[row + 1]; });
+        }
+      });
+    std::partial_sum(pairs.RowStarts.begin(), pairs.RowStarts.end(), pairs.RowStarts.begin());
+    const std::size_t entries = static_cast<std::size_t>(pairs.RowStarts.back());
+    pairs.Lattice.resize(entries);
+    pairs.Values.resize(entries);
+    pairs.Shifts.resize(entries);
+    pairs.RowSpans.resize(pairRows);
+  }
+  const float* strengths = this->Input.Strengths;
+  const auto value = [&](vtkIdType e)
+  {
+    if (e < 0)
+    {
+      return glm::vec4(0.0f);
+    }
+    const vtkIdType id = order[e];
+    return glm::vec4(colors[3 * id], colors[3 * id + 1], colors[3 * id + 2], strengths[id]);
+  };
+  vtkSMPTools::For(0, pairRows,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType row = begin; row < end; ++row)
+      {
+        const vtkIdType r = (row / rows) * 2 * rows + row % rows;
+        const bool lone = r + rows >= static_cast<vtkIdType>(sheets.RowSpans.size());
+        if (!built)
+        {
+          const std::uint32_t a = sheets.RowSpans[r];
+          const std::uint32_t b = lone ? 0xffffu : sheets.RowSpans[r + rows];
+          pairs.RowSpans[row] =
+            std::min(a & 0xffffu, b & 0xffffu) | (std::max(a >> 16, b >> 16) << 16);
+        }
+        vtkIdType e = pairs.RowStarts[row];
+        forEachEntry(row,
+          [&](vtkIdType first, vtkIdType second)
+          {
+            // The pair's kernel: the sum of the strengths, their weighted color and center.
+            const glm::vec4 v0 = value(first), v1 = value(second);
+            const float strength = v0.w + v1.w;
+            const float w1 = strength > 0.0f ? v1.w / strength : 0.0f;
+            pairs.Lattice[e] = sheets.Lattice[first >= 0 ? first : second];
+            pairs.Values[e] = glm::vec4(glm::mix(glm::vec3(v0), glm::vec3(v1), w1), strength);
+            pairs.Shifts[e] = lone ? 0.0f : w1 - 0.5f;
+            ++e;
+          });
+      }
+    });
 }
 
 //------------------------------------------------------------------------------
@@ -367,7 +510,7 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
   const List& l = this->Lists[list];
   const glm::ivec2 axes = SheetAxes(list);
   const vtkIdType rows = this->Input.GridDimensions[axes.y];
-  const int sheets = this->Input.GridDimensions[list];
+  const int layers = static_cast<int>(l.Layers.size());
   const glm::dmat3& A = this->Input.GridAxes;
   const glm::vec3 axisU(A[axes.x]), axisV(A[axes.y]), axisA(A[list]);
   const glm::vec3 eye(this->Eye[axes.x], this->Eye[axes.y], this->Eye[list]);
@@ -375,39 +518,39 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
     ? glm::vec2(0.0f)
     : glm::vec2(this->Direction[axes.x], this->Direction[axes.y]) /
       static_cast<float>(this->Direction[list]);
-  const std::vector<std::uint32_t>& lattice = this->Lattice[list];
-  const std::vector<glm::vec4>& values = this->Values[list];
-  const std::vector<vtkIdType>& starts = this->RowStarts[list];
-  const std::vector<std::uint32_t>& rowSpans = this->RowSpans[list];
+  const Tables& tables = l.Pairs ? this->Pairs[list] : this->Sheets[list];
+  const std::vector<std::uint32_t>& lattice = tables.Lattice;
+  const std::vector<glm::vec4>& values = tables.Values;
+  const std::vector<vtkIdType>& starts = tables.RowStarts;
+  const std::vector<std::uint32_t>& rowSpans = tables.RowSpans;
+  const float* shifts = l.Pairs ? tables.Shifts.data() : nullptr;
   const float cutoff = static_cast<float>(this->Cutoff);
   const int rowBegin = band * BandHeight;
   const int rowEnd = std::min(rowBegin + BandHeight, l.Size.y) - 1;
   splat::VolumeLayerCompositor compositor(l.Size.x, rowBegin, rowEnd, cutoff, false, nullptr);
   compositor.Begin(nullptr, true, this->Image.data());
-  for (int n = 0; n < sheets; ++n)
+  for (int n = 0; n < layers; ++n)
   {
-    // Where the whole band has stopped integrating the sheets behind add nothing.
+    // Where the whole band has stopped integrating the layers behind add nothing.
     if (!compositor.Integrates())
     {
       break;
     }
-    const int k = l.Ascending ? n : sheets - 1 - n;
-    const Sheet& s = l.Sheets[k];
+    const int k = l.Ascending ? n : layers - 1 - n;
+    const Layer& s = l.Layers[k];
     const glm::vec2 offset = s.Offset - glm::vec2(l.Origin);
-    // The sheet's rows whose footprints reach the band.
+    // The layer's rows whose footprints reach the band.
     const vtkIdType first = std::max<vtkIdType>(0,
       static_cast<vtkIdType>(std::ceil((rowBegin + 0.5f - s.HalfExtent.y - offset.y) / s.Scale)));
     const vtkIdType last = std::min<vtkIdType>(rows - 1,
       static_cast<vtkIdType>(std::floor((rowEnd + 0.5f + s.HalfExtent.y - offset.y) / s.Scale)));
-    const float toSheet = this->Perspective ? 1.0f / (k - eye.z) : 0.0f;
+    const float toSheet = this->Perspective ? 1.0f / (s.Position - eye.z) : 0.0f;
     const Footprint* footprints = l.Footprints.data() + static_cast<std::size_t>(k) * Tiles * Tiles;
-    // The first and last intermediate columns that footprints of lattice columns [u0, u1] reach.
-    const auto columns = [&](float u0, float u1, const glm::vec2& halfExtent)
+    // The first and last intermediate columns that footprints centered on [x0, x1] reach.
+    const auto columns = [&](float x0, float x1, float halfExtent)
     {
-      return glm::ivec2(
-        std::max(0, static_cast<int>(std::ceil(s.Scale * u0 + offset.x - halfExtent.x - 0.5f))),
-        std::min(l.Size.x - 1,
-          static_cast<int>(std::floor(s.Scale * u1 + offset.x + halfExtent.x - 0.5f))));
+      return glm::ivec2(std::max(0, static_cast<int>(std::ceil(x0 - halfExtent - 0.5f))),
+        std::min(l.Size.x - 1, static_cast<int>(std::floor(x1 + halfExtent - 0.5f))));
     };
     vtkVolumeSplatRasterizer::ScreenKernel kernel;
     kernel.Depth = 0.0f;
@@ -416,13 +559,13 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
       const std::size_t r = static_cast<std::size_t>(k * rows + row);
       // The row's footprints together, left out where the band's pixels they reach have all
       // stopped integrating (behind the opaque parts, or where no pixel takes the list).
-      const glm::ivec2 span = columns(static_cast<float>(rowSpans[r] & 0xffffu),
-        static_cast<float>(rowSpans[r] >> 16), s.HalfExtent);
+      const glm::ivec2 span =
+        columns(s.Scale * static_cast<float>(rowSpans[r] & 0xffffu) + offset.x,
+          s.Scale * static_cast<float>(rowSpans[r] >> 16) + offset.x, s.HalfExtent.x);
       const float v = static_cast<float>(row);
-      kernel.CenterY = s.Scale * v + offset.y;
-      const glm::ivec2 spanRows(
-        static_cast<int>(std::ceil(kernel.CenterY - s.HalfExtent.y - 0.5f)),
-        static_cast<int>(std::floor(kernel.CenterY + s.HalfExtent.y - 0.5f)));
+      const float centerY = s.Scale * v + offset.y;
+      const glm::ivec2 spanRows(static_cast<int>(std::ceil(centerY - s.HalfExtent.y - 0.5f)),
+        static_cast<int>(std::floor(centerY + s.HalfExtent.y - 0.5f)));
       if (starts[r] == starts[r + 1] || span.x > span.y)
       {
         continue;
@@ -435,12 +578,14 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
       }
       const Footprint* rowFootprints = footprints + static_cast<int>(v * l.TileScale.y) * Tiles;
       compositor.Touch(span.x, span.y, spanRows.x, spanRows.y);
-      // The path length along a voxel's ray per unit of index along the list's axis is
-      // |path + u pathPerColumn|.
-      const glm::vec3 path = this->Perspective
-        ? axisA + ((v - eye.y) * toSheet) * axisV - (eye.x * toSheet) * axisU
-        : axisA + shear.x * axisU + shear.y * axisV;
-      const glm::vec3 pathPerColumn = this->Perspective ? toSheet * axisU : glm::vec3(0.0f);
+      // The rays' direction per unit of index along the list's axis is t = (tU + u tPerColumn,
+      // tV): the path length along a voxel's ray per unit of that index is |axisA + t.x axisU +
+      // t.y axisV|, and a kernel d off the layer lands -d Scale t off its lattice point.
+      const float tU = this->Perspective ? -eye.x * toSheet : shear.x;
+      const float tPerColumn = this->Perspective ? toSheet : 0.0f;
+      const float tV = this->Perspective ? (v - eye.y) * toSheet : shear.y;
+      const glm::vec3 path = axisA + tU * axisU + tV * axisV;
+      const glm::vec3 pathPerColumn = tPerColumn * axisU;
       // The voxels' tile along the row, whose footprint they share.
       int tile = -1;
       const Footprint* f = nullptr;
@@ -456,33 +601,36 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
           kernel.ConicXX = f->ConicXX;
           kernel.ConicXY = f->ConicXY;
           kernel.ConicYY = f->ConicYY;
-          kernel.Y0 = static_cast<int>(std::ceil(kernel.CenterY - f->HalfExtent.y - 0.5f));
-          kernel.Y1 = static_cast<int>(std::floor(kernel.CenterY + f->HalfExtent.y - 0.5f));
+          kernel.Y0 = static_cast<int>(std::ceil(centerY - f->HalfExtent.y - s.Shift.y - 0.5f));
+          kernel.Y1 = static_cast<int>(std::floor(centerY + f->HalfExtent.y + s.Shift.y - 0.5f));
           if (f->Reach > 0)
           {
-            compositor.BeginFactoredRun(run, kernel.CenterY, kernel.Y0, kernel.Y1, f->ConicXX,
+            compositor.BeginFactoredRun(run, centerY, kernel.Y0, kernel.Y1, f->ConicXX,
               f->ConicXY, f->ConicYY, l.Cross.data() + f->Cross, f->Reach,
               CrossStride(f->Reach));
           }
         }
-        const glm::ivec2 x = columns(u, u, f->HalfExtent);
+        const float shift = shifts ? -s.Scale * shifts[e] : 0.0f;
+        const float centerX = s.Scale * u + offset.x + shift * (tU + u * tPerColumn);
+        const glm::ivec2 x = columns(centerX, centerX, f->HalfExtent.x);
         if (x.x > x.y || !compositor.IntegratesInRows(x.x, x.y))
         {
           continue;
         }
-        const float centerX = s.Scale * u + offset.x;
+        const float shiftY = shift * tV;
         const float length = glm::length(path + u * pathPerColumn);
         const glm::vec4& value = values[e];
         const float amplitude = f->Amplitude * length * value.w;
         if (f->Reach > 0)
         {
-          compositor.AddFactored(run, centerX, x.x, x.y, amplitude, glm::vec3(value));
+          compositor.AddFactored(run, centerX, shiftY, x.x, x.y, amplitude, glm::vec3(value));
         }
         else
         {
           kernel.X0 = x.x;
           kernel.X1 = x.y;
           kernel.CenterX = centerX;
+          kernel.CenterY = centerY + shiftY;
           kernel.Amplitude = amplitude;
           // Assigned one by one: std::copy_n of three floats became a memmove call per voxel.
           kernel.Color[0] = value.x;
@@ -524,11 +672,21 @@ void vtkVolumeSplatSheetCompositor::Reset()
 {
   for (int list = 0; list < 3; ++list)
   {
-    this->Internal->Lattice[list].clear();
-    this->Internal->ValueColors[list] = nullptr;
-    this->Internal->RowStarts[list].clear();
-    this->Internal->RowSpans[list].clear();
+    this->Internal->Sheets[list] = Tables();
+    this->Internal->Pairs[list] = Tables();
   }
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatSheetCompositor::SetMergePairs(bool merge)
+{
+  this->Internal->MergePairs = merge;
+}
+
+//------------------------------------------------------------------------------
+bool vtkVolumeSplatSheetCompositor::GetMergePairs() const
+{
+  return this->Internal->MergePairs;
 }
 
 //------------------------------------------------------------------------------
@@ -599,7 +757,7 @@ vtkIdType vtkVolumeSplatSheetCompositor::Render(int list, const std::vector<vtkI
 {
   Internals& in = *this->Internal;
   const Internals::List& l = in.Lists[list];
-  if (in.Lattice[list].size() != order.size())
+  if (in.Sheets[list].Lattice.size() != order.size())
   {
     in.BuildTables(list, order);
   }
@@ -639,22 +797,18 @@ vtkIdType vtkVolumeSplatSheetCompositor::Render(int list, const std::vector<vtkI
       forEachTap(sample, [&in](std::size_t q, float) { in.Image[q] = glm::vec4(0.0f); });
     }
   }
-  if (in.ValueColors[list] != colors || perFrameColors)
+  Tables& tables = l.Pairs ? in.Pairs[list] : in.Sheets[list];
+  if (tables.Colors != colors || perFrameColors)
   {
-    std::vector<glm::vec4>& values = in.Values[list];
-    values.resize(order.size());
-    const float* strengths = in.Input.Strengths;
-    vtkSMPTools::For(0, static_cast<vtkIdType>(order.size()),
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType e = begin; e < end; ++e)
-        {
-          const vtkIdType id = order[e];
-          values[e] =
-            glm::vec4(colors[3 * id], colors[3 * id + 1], colors[3 * id + 2], strengths[id]);
-        }
-      });
-    in.ValueColors[list] = colors;
+    if (l.Pairs)
+    {
+      in.BuildPairs(list, order, colors);
+    }
+    else
+    {
+      in.CopyValues(list, order, colors);
+    }
+    tables.Colors = colors;
   }
   in.Composite(list);
   // The warp to the screen pixels.
@@ -682,12 +836,22 @@ glm::ivec2 vtkVolumeSplatSheetCompositor::GetIntermediateSize(int list) const
 }
 
 //------------------------------------------------------------------------------
+int vtkVolumeSplatSheetCompositor::GetNumberOfLayers(int list) const
+{
+  return list >= 0 && list < 3 && this->Internal->Lists[list].Size.x > 0
+    ? static_cast<int>(this->Internal->Lists[list].Layers.size())
+    : 0;
+}
+
+//------------------------------------------------------------------------------
 void vtkVolumeSplatSheetCompositor::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "MergePairs: " << this->GetMergePairs() << "\n";
   for (int list = 0; list < 3; ++list)
   {
     const glm::ivec2 size = this->GetIntermediateSize(list);
-    os << indent << "IntermediateSize " << list << ": " << size.x << " x " << size.y << "\n";
+    os << indent << "IntermediateSize " << list << ": " << size.x << " x " << size.y
+       << ", Layers: " << this->GetNumberOfLayers(list) << "\n";
   }
 }

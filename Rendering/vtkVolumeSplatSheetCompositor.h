@@ -23,9 +23,24 @@
  * weights as for its exact per-kernel path.
  *
  * Per sheet this is one footprint of a few intermediate pixels per voxel instead of one per
- * covered screen pixel, and the per-kernel setup and binning disappear. The approximations
- * against the exact path: one footprint per tile of a sheet, and the warp of an image sampled
- * at 0.7 samples per footprint deviation (TestVolumeSplatSheets bounds the difference).
+ * covered screen pixel, and the per-kernel setup and binning disappear.
+ *
+ * With MergePairs (the default) the layers composited are pairs of sheets (2j, 2j + 1) rather
+ * than sheets, half the footprints: the two voxels at one lattice point of a pair become one
+ * kernel of their summed strength and strength-weighted color, centered on their
+ * strength-weighted center along the axis (so a voxel whose partner is transparent stays where
+ * it is), of the voxels' covariance. Where the rays run along the axis a ray integrates both
+ * voxels either way; obliquely the pair's two footprints, offset by the rays' shear, become one,
+ * and the order within a pair is lost (of the order of tau1 tau2 times their color difference,
+ * small for the faint voxels of a volume's interior). The pair's axial spread (a quarter of a
+ * sheet squared for equal strengths) is not added to the covariance: in a volume's interior the
+ * rays cross many pairs and it averages out, at its boundaries the strengths differ and the
+ * spread is smaller, and the images measured closer to the exact path without it (MRI RMSE
+ * 0.0012 against 0.0014 with it). A lone last sheet is a layer of its own.
+ *
+ * The approximations against the exact path: one footprint per tile of a layer, the pairs, and
+ * the warp of an image sampled at 0.7 samples per footprint deviation (TestVolumeSplatSheets
+ * bounds the difference, with and without the pairs).
  * Intermediate pixels that no screen pixel reads are left out, and pixels stop integrating at
  * the rasterizer's termination opacity: a voxel row, or a voxel, whose footprints reach only
  * such pixels is passed over before its setup, and a band of rows ends its traversal once all
@@ -65,6 +80,15 @@ public:
    */
   void Reset();
 
+  ///@{
+  /**
+   * Whether each list's sheets are merged by pairs along its axis (see the class comment),
+   * from the next frame on. Default on.
+   */
+  void SetMergePairs(bool merge);
+  bool GetMergePairs() const;
+  ///@}
+
   /**
    * Prepares a frame of the image data `kernels` (GridIds set) seen by `camera`, for the lists
    * marked in `used`. Returns false where the sheets do not apply (see the class comment):
@@ -88,6 +112,12 @@ public:
    * The last frame's intermediate image size of list `list` (0 when it was not rendered).
    */
   glm::ivec2 GetIntermediateSize(int list) const;
+
+  /**
+   * The layers (sheets, or pairs of sheets) list `list` composited in the last frame (0 when
+   * it was not rendered).
+   */
+  int GetNumberOfLayers(int list) const;
 
 protected:
   vtkVolumeSplatSheetCompositor();
