@@ -90,6 +90,12 @@ struct Tables
   std::vector<float> Shifts;
   const float* Colors = nullptr;
 };
+
+// Kernel id's color and strength, a value of Tables.
+glm::vec4 KernelValue(const float* colors, const float* strengths, vtkIdType id)
+{
+  return glm::vec4(colors[3 * id], colors[3 * id + 1], colors[3 * id + 2], strengths[id]);
+}
 }
 
 struct vtkVolumeSplatSheetCompositor::Internals
@@ -368,9 +374,7 @@ void vtkVolumeSplatSheetCompositor::Internals::CopyValues(
     {
       for (vtkIdType e = begin; e < end; ++e)
       {
-        const vtkIdType id = order[e];
-        values[e] =
-          glm::vec4(colors[3 * id], colors[3 * id + 1], colors[3 * id + 2], strengths[id]);
+        values[e] = KernelValue(colors, strengths, order[e]);
       }
     });
 }
@@ -423,14 +427,7 @@ void vtkVolumeSplatSheetCompositor::Internals::BuildPairs(
   }
   const float* strengths = this->Input.Strengths;
   const auto value = [&](vtkIdType e)
-  {
-    if (e < 0)
-    {
-      return glm::vec4(0.0f);
-    }
-    const vtkIdType id = order[e];
-    return glm::vec4(colors[3 * id], colors[3 * id + 1], colors[3 * id + 2], strengths[id]);
-  };
+  { return e < 0 ? glm::vec4(0.0f) : KernelValue(colors, strengths, order[e]); };
   vtkSMPTools::For(0, pairRows,
     [&](vtkIdType begin, vtkIdType end)
     {
