@@ -25,6 +25,11 @@ constexpr int BandHeight = 32;
 // Intermediate pixels per standard deviation of the narrowest footprint on the front sheet.
 constexpr double SamplesPerSigma = 0.7;
 
+// The largest optical depth per sheet spacing (along the axis) of two voxels that
+// vtkVolumeSplatSheetCompositor merges into one kernel: the order within a pair, which the merge
+// loses, changes their color by up to about tau1 tau2 / 2 times their color difference.
+constexpr float MergedOpticalDepth = 0.5f;
+
 // The largest intermediate image, in pixels, beyond which the exact path is cheaper.
 constexpr double MaximumIntermediatePixels = 1 << 26;
 
@@ -80,7 +85,8 @@ struct Layer
 // largest u of its entries, packed as the lattice. Where the colors change: each entry's color
 // and strength in this order, so that the compositing reads them in sequence (the X and Y
 // lists would gather them from all over memory), and the colors they came from; for pairs,
-// each entry's offset along the axis from the pair's middle (its strength-weighted center).
+// each entry's offset along the axis from the pair's middle (its strength-weighted center) and
+// the kernels it holds (the second -1 for one).
 struct Tables
 {
   std::vector<std::uint32_t> Lattice;
@@ -88,6 +94,7 @@ struct Tables
   std::vector<std::uint32_t> RowSpans;
   std::vector<glm::vec4> Values;
   std::vector<float> Shifts;
+  std::vector<std::array<vtkIdType, 2>> Kernels;
   const float* Colors = nullptr;
 };
 
@@ -138,9 +145,10 @@ struct vtkVolumeSplatSheetCompositor::Internals
   void BuildTables(int list, const std::vector<vtkIdType>& order);
   // The sheets' values of list `list` (entries `order`) for `colors`.
   void CopyValues(int list, const std::vector<vtkIdType>& order, const float* colors);
-  // The pairs' tables of list `list` (entries `order`) from the sheets', their values for
-  // `colors`.
-  void BuildPairs(int list, const std::vector<vtkIdType>& order, const float* colors);
+  // The pairs' tables of list `list` (entries `order`) from the sheets', but their values.
+  void BuildPairs(int list, const std::vector<vtkIdType>& order);
+  // The pairs' values of list `list` for `colors`.
+  void MergeValues(int list, const float* colors);
   // Per screen pixel taking list `list` in its traversal's direction, where its ray meets the
   // intermediate image, in pixels; Unused elsewhere.
   void FindSamples(int list, const float* weights);
@@ -381,7 +389,7 @@ void vtkVolumeSplatSheetCompositor::Internals::CopyValues(
 
 //------------------------------------------------------------------------------
 void vtkVolumeSplatSheetCompositor::Internals::BuildPairs(
-  int list, const std::vector<vtkIdType>& order, const float* colors)
+  int list, const std::vector<vtkIdType>& order)
 {
   const Tables& sheets = this->Sheets[list];
   Tables& pairs = this->Pairs[list];
@@ -389,8 +397,8 @@ void vtkVolumeSplatSheetCompositor::Internals::BuildPairs(
   const vtkIdType rows = this->Input.GridDimensions[SheetAxes(list).y];
   const vtkIdType pairRows = (count + 1) / 2 * rows;
   // Visits the entries of row `pairRow` of the pairs: those of the row in the pair's sheets
-  // merged by u, as visit(first, second) with the entries of the lower and the upper sheet
-  // (-1 where that sheet has none at u).
+  // merged by u, as visit(first, second) with the kernels of the lower and the upper sheet
+  // (-1 where that sheet has none at u) and the first's entry of the sheets.
   const auto forEachEntry = [&](vtkIdType pairRow, auto&& visit)
   {
     const vtkIdType r = (pairRow / rows) * 2 * rows + pairRow % rows;
@@ -403,58 +411,112 @@ void vtkVolumeSplatSheetCompositor::Internals::BuildPairs(
     {
       const std::uint32_t u0 = first < firstEnd ? sheets.Lattice[first] & 0xffffu : 0x10000u;
       const std::uint32_t u1 = second < secondEnd ? sheets.Lattice[second] & 0xffffu : 0x10000u;
-      visit(u0 <= u1 ? first++ : -1, u1 <= u0 ? second++ : -1);
+      const vtkIdType entry = u0 <= u1 ? first : second;
+      visit(u0 <= u1 ? order[first++] : -1, u1 <= u0 ? order[second++] : -1, entry);
     }
   };
-  const bool built = !pairs.RowStarts.empty();
-  if (!built)
-  {
-    pairs.RowStarts.assign(pairRows + 1, 0);
-    vtkSMPTools::For(0, pairRows,
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType row = begin; row < end; ++row)
-        {
-          forEachEntry(row, [&](vtkIdType, vtkIdType) { ++pairs.RowStarts[row + 1]; });
-        }
-      });
-    std::partial_sum(pairs.RowStarts.begin(), pairs.RowStarts.end(), pairs.RowStarts.begin());
-    const std::size_t entries = static_cast<std::size_t>(pairs.RowStarts.back());
-    pairs.Lattice.resize(entries);
-    pairs.Values.resize(entries);
-    pairs.Shifts.resize(entries);
-    pairs.RowSpans.resize(pairRows);
-  }
+  // Two voxels are merged where their optical depths per sheet along the axis add up to at
+  // most MergedOpticalDepth; otherwise the lower one stays in the pair's first layer, the upper
+  // one goes into its second (where the first is merged or alone, at its own center). Which
+  // voxels merge depends on the strengths alone.
   const float* strengths = this->Input.Strengths;
-  const auto value = [&](vtkIdType e)
-  { return e < 0 ? glm::vec4(0.0f) : KernelValue(colors, strengths, order[e]); };
+  const glm::dmat3& A = this->Input.GridAxes;
+  const float depthPerStrength =
+    static_cast<float>(glm::length(A[list]) / std::abs(glm::determinant(A)));
+  const auto merges = [&](vtkIdType first, vtkIdType second)
+  {
+    return first < 0 || second < 0 ||
+      (strengths[first] + strengths[second]) * depthPerStrength <= MergedOpticalDepth;
+  };
+  // The row of the tables of the first and the second layer of pair row (j, v).
+  const auto lower = [rows](vtkIdType pairRow) { return pairRow + (pairRow / rows) * rows; };
+  const auto upper = [rows](vtkIdType pairRow) { return pairRow + (pairRow / rows + 1) * rows; };
+  pairs.RowStarts.assign(2 * pairRows + 1, 0);
   vtkSMPTools::For(0, pairRows,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType row = begin; row < end; ++row)
       {
-        const vtkIdType r = (row / rows) * 2 * rows + row % rows;
-        const bool lone = r + rows >= static_cast<vtkIdType>(sheets.RowSpans.size());
-        if (!built)
-        {
-          const std::uint32_t a = sheets.RowSpans[r];
-          const std::uint32_t b = lone ? 0xffffu : sheets.RowSpans[r + rows];
-          pairs.RowSpans[row] =
-            std::min(a & 0xffffu, b & 0xffffu) | (std::max(a >> 16, b >> 16) << 16);
-        }
-        vtkIdType e = pairs.RowStarts[row];
         forEachEntry(row,
-          [&](vtkIdType first, vtkIdType second)
+          [&](vtkIdType first, vtkIdType second, vtkIdType)
           {
-            // The pair's kernel: the sum of the strengths, their weighted color and center.
-            const glm::vec4 v0 = value(first), v1 = value(second);
-            const float strength = v0.w + v1.w;
-            const float w1 = strength > 0.0f ? v1.w / strength : 0.0f;
-            pairs.Lattice[e] = sheets.Lattice[first >= 0 ? first : second];
-            pairs.Values[e] = glm::vec4(glm::mix(glm::vec3(v0), glm::vec3(v1), w1), strength);
-            pairs.Shifts[e] = lone ? 0.0f : w1 - 0.5f;
-            ++e;
+            ++pairs.RowStarts[lower(row) + 1];
+            pairs.RowStarts[upper(row) + 1] += !merges(first, second);
           });
+      }
+    });
+  std::partial_sum(pairs.RowStarts.begin(), pairs.RowStarts.end(), pairs.RowStarts.begin());
+  const std::size_t entries = static_cast<std::size_t>(pairs.RowStarts.back());
+  pairs.Lattice.resize(entries);
+  pairs.Shifts.resize(entries);
+  pairs.Kernels.resize(entries);
+  pairs.RowSpans.assign(2 * pairRows, 0xffffu);
+  pairs.Colors = nullptr;
+  vtkSMPTools::For(0, pairRows,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType row = begin; row < end; ++row)
+      {
+        const bool lone = 2 * (row / rows) + 1 == count;
+        const vtkIdType tableRows[2] = { lower(row), upper(row) };
+        vtkIdType next[2] = { pairs.RowStarts[tableRows[0]], pairs.RowStarts[tableRows[1]] };
+        // Kernels `kernels` at entry `e` of the sheets into layer `layer` of the pair, d off the
+        // pair's middle along the axis.
+        const auto put = [&](int layer, vtkIdType e, const std::array<vtkIdType, 2>& kernels,
+                           float d)
+        {
+          const std::uint32_t lattice = sheets.Lattice[e];
+          std::uint32_t& span = pairs.RowSpans[tableRows[layer]];
+          const std::uint32_t u = lattice & 0xffffu;
+          span = std::min(span & 0xffffu, u) | (std::max(span >> 16, u) << 16);
+          pairs.Lattice[next[layer]] = lattice;
+          pairs.Shifts[next[layer]] = d;
+          pairs.Kernels[next[layer]] = kernels;
+          ++next[layer];
+        };
+        forEachEntry(row,
+          [&](vtkIdType first, vtkIdType second, vtkIdType e)
+          {
+            if (!merges(first, second))
+            {
+              put(0, e, { first, -1 }, -0.5f);
+              put(1, e, { second, -1 }, 0.5f);
+              return;
+            }
+            // The pair's kernel at their strength-weighted center (one voxel: its own).
+            const float s0 = first >= 0 ? strengths[first] : 0.0f;
+            const float s1 = second >= 0 ? strengths[second] : 0.0f;
+            const float w1 = s0 + s1 > 0.0f ? s1 / (s0 + s1) : 0.0f;
+            put(0, e, { first >= 0 ? first : second, first >= 0 ? second : -1 },
+              lone ? 0.0f : w1 - 0.5f);
+          });
+      }
+    });
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatSheetCompositor::Internals::MergeValues(int list, const float* colors)
+{
+  Tables& pairs = this->Pairs[list];
+  pairs.Values.resize(pairs.Kernels.size());
+  const float* strengths = this->Input.Strengths;
+  vtkSMPTools::For(0, static_cast<vtkIdType>(pairs.Kernels.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType e = begin; e < end; ++e)
+      {
+        // A merged pair: the sum of the strengths and their weighted color.
+        const std::array<vtkIdType, 2>& kernels = pairs.Kernels[e];
+        const glm::vec4 v0 = KernelValue(colors, strengths, kernels[0]);
+        if (kernels[1] < 0)
+        {
+          pairs.Values[e] = v0;
+          continue;
+        }
+        const glm::vec4 v1 = KernelValue(colors, strengths, kernels[1]);
+        const float strength = v0.w + v1.w;
+        const float w1 = strength > 0.0f ? v1.w / strength : 0.0f;
+        pairs.Values[e] = glm::vec4(glm::mix(glm::vec3(v0), glm::vec3(v1), w1), strength);
       }
     });
 }
@@ -526,15 +588,18 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
   const int rowEnd = std::min(rowBegin + BandHeight, l.Size.y) - 1;
   splat::VolumeLayerCompositor compositor(l.Size.x, rowBegin, rowEnd, cutoff, false, nullptr);
   compositor.Begin(nullptr, true, this->Image.data());
-  for (int n = 0; n < layers; ++n)
+  // The tables hold two layers per pair (see BuildPairs), with the pair's geometry.
+  const int tableLayers = l.Pairs ? 2 : 1;
+  for (int n = 0; n < layers * tableLayers; ++n)
   {
     // Where the whole band has stopped integrating the layers behind add nothing.
     if (!compositor.Integrates())
     {
       break;
     }
-    const int k = l.Ascending ? n : layers - 1 - n;
-    const Layer& s = l.Layers[k];
+    const int k = l.Ascending ? n : layers * tableLayers - 1 - n;
+    const int layer = k / tableLayers;
+    const Layer& s = l.Layers[layer];
     const glm::vec2 offset = s.Offset - glm::vec2(l.Origin);
     // The layer's rows whose footprints reach the band.
     const vtkIdType first = std::max<vtkIdType>(0,
@@ -542,7 +607,8 @@ SPLAT_VECTOR_CLONES void vtkVolumeSplatSheetCompositor::Internals::CompositeBand
     const vtkIdType last = std::min<vtkIdType>(rows - 1,
       static_cast<vtkIdType>(std::floor((rowEnd + 0.5f + s.HalfExtent.y - offset.y) / s.Scale)));
     const float toSheet = this->Perspective ? 1.0f / (s.Position - eye.z) : 0.0f;
-    const Footprint* footprints = l.Footprints.data() + static_cast<std::size_t>(k) * Tiles * Tiles;
+    const Footprint* footprints =
+      l.Footprints.data() + static_cast<std::size_t>(layer) * Tiles * Tiles;
     // The first and last intermediate columns that footprints centered on [x0, x1] reach.
     const auto columns = [&](float x0, float x1, float halfExtent)
     {
@@ -758,6 +824,10 @@ vtkIdType vtkVolumeSplatSheetCompositor::Render(int list, const std::vector<vtkI
   {
     in.BuildTables(list, order);
   }
+  if (l.Pairs && in.Pairs[list].RowStarts.empty())
+  {
+    in.BuildPairs(list, order);
+  }
   in.FindSamples(list, weights);
   // Intermediate pixels that no screen pixel reads start closed (opaque): nothing is splatted
   // there.
@@ -799,7 +869,7 @@ vtkIdType vtkVolumeSplatSheetCompositor::Render(int list, const std::vector<vtkI
   {
     if (l.Pairs)
     {
-      in.BuildPairs(list, order, colors);
+      in.MergeValues(list, colors);
     }
     else
     {

@@ -5,10 +5,12 @@
 // 1. the Gaussian blob of TestVolumeSplatCrossRenderer from its perspective camera, along the
 //    diagonal (all three lists) and in a parallel projection;
 // 2. the MRI head ch2.nii.gz (mricron-data; skipped with 125 when absent) with the camera and
-//    transfer functions of TestVolumeSplatCrossRenderer, unshaded and shaded.
-// Each view's RMSE and largest difference must stay within MAX_BLOB_RMSE, MAX_MRI_RMSE and
-// MAX_DIFFERENCE (their measurements are in CMakeLists.txt), and the paths must differ at all
-// (else the sheets or the pairs did not run). The paths' frame times are printed.
+//    transfer functions of TestVolumeSplatCrossRenderer, unshaded and shaded, and the demo's
+//    shaded face, whose opaque skin the pairs must not merge.
+// Each view's RMSE and largest difference must stay within MAX_BLOB_RMSE, MAX_MRI_RMSE (the
+// face: MAX_FACE_RMSE) and MAX_DIFFERENCE (their measurements are in CMakeLists.txt), and the
+// paths must differ at all (else the sheets or the pairs did not run). The paths' frame times
+// are printed.
 #include "SplatVolumeScenes.h" // For splatexample::MriProperty
 #include "SplatVolumeTestUtilities.h"
 #include "vtkVolumeSplatMapper.h"
@@ -111,5 +113,9 @@ int main(int, char*[])
   failures += Compare("MRI", head, property, splattest::PlaceMriCamera, MAX_MRI_RMSE);
   property->ShadeOn();
   failures += Compare("MRI shaded", head, property, splattest::PlaceMriCamera, MAX_MRI_RMSE);
+  // The demo's view of the face, whose opaque skin keeps its voxels' pairs apart.
+  failures += Compare("MRI face", head, splatexample::MriFaceProperty(),
+    [&head](vtkRenderer* renderer) { splatexample::PlaceMriFaceCamera(renderer, head); },
+    MAX_FACE_RMSE);
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
