@@ -30,6 +30,10 @@ constexpr double SamplesPerSigma = 0.7;
 // loses, changes their color by up to about tau1 tau2 / 2 times their color difference.
 constexpr float MergedOpticalDepth = 0.5f;
 
+// Intermediate pixels around the footprints' box, left empty: the warp's Catmull-Rom taps of a
+// sample that reads any footprint all lie within the image.
+constexpr int Margin = 3;
+
 // The largest intermediate image, in pixels, beyond which the exact path is cheaper.
 constexpr double MaximumIntermediatePixels = 1 << 26;
 
@@ -327,8 +331,8 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
       hi = glm::max(hi, q + glm::dvec2(s.HalfExtent));
     }
   }
-  l.Origin = glm::floor(lo) - 1.0;
-  const glm::dvec2 size = glm::ceil(hi) + 1.0 - l.Origin;
+  l.Origin = glm::floor(lo) - static_cast<double>(Margin);
+  const glm::dvec2 size = glm::ceil(hi) + static_cast<double>(Margin) - l.Origin;
   if (!(size.x * size.y <= MaximumIntermediatePixels))
   {
     return false;
@@ -553,8 +557,9 @@ void vtkVolumeSplatSheetCompositor::Internals::FindSamples(int list, const float
           const glm::dvec2 q = l.Resolution *
               glm::dvec2(o[axes.x] + s * d[axes.x], o[axes.y] + s * d[axes.y]) -
             l.Origin - 0.5;
-          // Far outside the image (or no meeting at all) reads nothing.
-          if (q.x > -1.0 && q.y > -1.0 && q.x < l.Size.x && q.y < l.Size.y)
+          // Where a tap would leave the image the sample reads only the empty margin (or the
+          // ray does not meet the plane at all).
+          if (q.x >= 1.0 && q.y >= 1.0 && q.x < l.Size.x - 2 && q.y < l.Size.y - 2)
           {
             sample = glm::vec2(q);
           }
@@ -832,36 +837,23 @@ vtkIdType vtkVolumeSplatSheetCompositor::Render(int list, const std::vector<vtkI
   // Intermediate pixels that no screen pixel reads start closed (opaque): nothing is splatted
   // there.
   in.Image.assign(static_cast<std::size_t>(l.Size.x) * l.Size.y, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-  // Catmull-Rom weights: the image is sampled about once per footprint deviation, where
-  // bilinear interpolation would flatten the footprints' peaks.
-  auto forEachTap = [&l](const glm::vec2& sample, auto&& visit)
+  // The first of the 4 x 4 pixels (within the image, see FindSamples) whose Catmull-Rom
+  // weights give a sample's color: the image is sampled about once per footprint deviation,
+  // where bilinear interpolation would flatten the footprints' peaks.
+  const auto firstTap = [&l](const glm::vec2& sample)
   {
-    const glm::ivec2 base(glm::floor(sample));
-    const glm::vec2 f = sample - glm::vec2(base);
-    const auto weights = [](float t)
-    {
-      const float t2 = t * t, t3 = t2 * t;
-      return glm::vec4(-0.5f * t3 + t2 - 0.5f * t, 1.5f * t3 - 2.5f * t2 + 1.0f,
-        -1.5f * t3 + 2.0f * t2 + 0.5f * t, 0.5f * t3 - 0.5f * t2);
-    };
-    const glm::vec4 wx = weights(f.x), wy = weights(f.y);
-    for (int j = 0; j < 4; ++j)
-    {
-      for (int i = 0; i < 4; ++i)
-      {
-        const glm::ivec2 tap = base + glm::ivec2(i - 1, j - 1);
-        if (tap.x >= 0 && tap.y >= 0 && tap.x < l.Size.x && tap.y < l.Size.y)
-        {
-          visit(static_cast<std::size_t>(tap.y) * l.Size.x + tap.x, wx[i] * wy[j]);
-        }
-      }
-    }
+    const glm::ivec2 base = glm::ivec2(glm::floor(sample)) - 1;
+    return static_cast<std::size_t>(base.y) * l.Size.x + base.x;
   };
   for (const glm::vec2& sample : in.Samples)
   {
     if (sample != Unused)
     {
-      forEachTap(sample, [&in](std::size_t q, float) { in.Image[q] = glm::vec4(0.0f); });
+      const auto tap = in.Image.begin() + firstTap(sample);
+      for (int j = 0; j < 4; ++j)
+      {
+        std::fill_n(tap + static_cast<std::ptrdiff_t>(j) * l.Size.x, 4, glm::vec4(0.0f));
+      }
     }
   }
   Tables& tables = l.Pairs ? in.Pairs[list] : in.Sheets[list];
@@ -885,10 +877,23 @@ vtkIdType vtkVolumeSplatSheetCompositor::Render(int list, const std::vector<vtkI
     {
       for (vtkIdType p = begin; p < end; ++p)
       {
+        const glm::vec2 sample = in.Samples[p];
         glm::vec4 color(0.0f);
-        if (in.Samples[p] != Unused)
+        if (sample != Unused)
         {
-          forEachTap(in.Samples[p], [&](std::size_t q, float w) { color += w * in.Image[q]; });
+          const auto weights = [](float t)
+          {
+            const float t2 = t * t, t3 = t2 * t;
+            return glm::vec4(-0.5f * t3 + t2 - 0.5f * t, 1.5f * t3 - 2.5f * t2 + 1.0f,
+              -1.5f * t3 + 2.0f * t2 + 0.5f * t, 0.5f * t3 - 0.5f * t2);
+          };
+          const glm::vec2 f = sample - glm::floor(sample);
+          const glm::vec4 wx = weights(f.x), wy = weights(f.y);
+          const glm::vec4* tap = in.Image.data() + firstTap(sample);
+          for (int j = 0; j < 4; ++j, tap += l.Size.x)
+          {
+            color += wy[j] * (wx[0] * tap[0] + wx[1] * tap[1] + wx[2] * tap[2] + wx[3] * tap[3]);
+          }
         }
         buffer[p] = color;
       }
