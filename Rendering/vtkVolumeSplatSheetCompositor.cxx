@@ -539,6 +539,18 @@ void vtkVolumeSplatSheetCompositor::Internals::FindSamples(int list, const float
     {
       for (vtkIdType y = rowBegin; y < rowEnd; ++y)
       {
+        // A pixel's ray in index coordinates, origin o and direction d, at column x of the
+        // row: both are affine in x.
+        const auto ray = [&](double x)
+        {
+          const glm::dvec3 pixel(x + 0.5, y + 0.5, 1.0);
+          const glm::dvec3 origin = this->Perspective ? glm::dvec3(0.0) : rays.Origin * pixel;
+          return std::make_pair(glm::dvec3(this->EyeToIndex * glm::dvec4(origin, 1.0)),
+            glm::dvec3(this->EyeToIndex * glm::dvec4(rays.Direction * pixel, 0.0)));
+        };
+        const auto first = ray(0.0), next = ray(1.0);
+        const glm::dvec3 originStep = next.first - first.first;
+        const glm::dvec3 directionStep = next.second - first.second;
         for (int x = 0; x < width; ++x)
         {
           const std::size_t p = static_cast<std::size_t>(y) * width + x;
@@ -548,11 +560,8 @@ void vtkVolumeSplatSheetCompositor::Internals::FindSamples(int list, const float
           {
             continue;
           }
-          const glm::dvec3 pixel(x + 0.5, y + 0.5, 1.0);
-          const glm::dvec3 origin =
-            this->Perspective ? glm::dvec3(0.0) : rays.Origin * pixel;
-          const glm::dvec3 o(this->EyeToIndex * glm::dvec4(origin, 1.0));
-          const glm::dvec3 d(this->EyeToIndex * glm::dvec4(rays.Direction * pixel, 0.0));
+          const glm::dvec3 o = first.first + static_cast<double>(x) * originStep;
+          const glm::dvec3 d = first.second + static_cast<double>(x) * directionStep;
           const double s = (l.Reference - o[list]) / d[list];
           const glm::dvec2 q = l.Resolution *
               glm::dvec2(o[axes.x] + s * d[axes.x], o[axes.y] + s * d[axes.y]) -
