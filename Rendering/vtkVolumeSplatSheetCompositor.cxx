@@ -400,17 +400,19 @@ void vtkVolumeSplatSheetCompositor::Internals::BuildPairs(
   const int count = this->Input.GridDimensions[list];
   const vtkIdType rows = this->Input.GridDimensions[SheetAxes(list).y];
   const vtkIdType pairRows = (count + 1) / 2 * rows;
+  // Whether pair row `pairRow` is of the lone last sheet of an odd count.
+  const auto lone = [rows, count](vtkIdType pairRow) { return 2 * (pairRow / rows) + 1 == count; };
   // Visits the entries of row `pairRow` of the pairs: those of the row in the pair's sheets
-  // merged by u, as visit(first, second) with the kernels of the lower and the upper sheet
-  // (-1 where that sheet has none at u) and the first's entry of the sheets.
+  // merged by u, as visit(first, second, e) with the kernels of the lower and the upper sheet
+  // (-1 where that sheet has none at u) and an entry of the sheets at that u.
   const auto forEachEntry = [&](vtkIdType pairRow, auto&& visit)
   {
     const vtkIdType r = (pairRow / rows) * 2 * rows + pairRow % rows;
     vtkIdType first = sheets.RowStarts[r];
     const vtkIdType firstEnd = sheets.RowStarts[r + 1];
-    const bool lone = r + rows >= static_cast<vtkIdType>(sheets.RowStarts.size()) - 1;
-    vtkIdType second = lone ? 0 : sheets.RowStarts[r + rows];
-    const vtkIdType secondEnd = lone ? 0 : sheets.RowStarts[r + rows + 1];
+    const bool single = lone(pairRow);
+    vtkIdType second = single ? 0 : sheets.RowStarts[r + rows];
+    const vtkIdType secondEnd = single ? 0 : sheets.RowStarts[r + rows + 1];
     while (first < firstEnd || second < secondEnd)
     {
       const std::uint32_t u0 = first < firstEnd ? sheets.Lattice[first] & 0xffffu : 0x10000u;
@@ -461,7 +463,7 @@ void vtkVolumeSplatSheetCompositor::Internals::BuildPairs(
     {
       for (vtkIdType row = begin; row < end; ++row)
       {
-        const bool lone = 2 * (row / rows) + 1 == count;
+        const bool single = lone(row);
         const vtkIdType tableRows[2] = { lower(row), upper(row) };
         vtkIdType next[2] = { pairs.RowStarts[tableRows[0]], pairs.RowStarts[tableRows[1]] };
         // Kernels `kernels` at entry `e` of the sheets into layer `layer` of the pair, d off the
@@ -492,7 +494,7 @@ void vtkVolumeSplatSheetCompositor::Internals::BuildPairs(
             const float s1 = second >= 0 ? strengths[second] : 0.0f;
             const float w1 = s0 + s1 > 0.0f ? s1 / (s0 + s1) : 0.0f;
             put(0, e, { first >= 0 ? first : second, first >= 0 ? second : -1 },
-              lone ? 0.0f : w1 - 0.5f);
+              single ? 0.0f : w1 - 0.5f);
           });
       }
     });
