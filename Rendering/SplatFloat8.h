@@ -19,6 +19,25 @@
 #include <cstdint>
 #include <cstring>
 
+// Where GCC can dispatch on the running CPU (ifunc, x86-64 glibc), the per-pixel loops are also
+// built for AVX2 and FMA: twice the lanes of the SSE2 baseline, and the exponential's polynomial
+// in fused steps.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define SPLAT_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define SPLAT_VECTOR_CLONES
+#endif
+
+// For the small helpers of those loops, which GCC otherwise leaves out of line in the clones,
+// and for their visitors (lambdas), which GCC otherwise builds once for the baseline only.
+#if defined(__GNUC__)
+#define SPLAT_ALWAYS_INLINE inline __attribute__((always_inline))
+#define SPLAT_INLINE_LAMBDA __attribute__((always_inline))
+#else
+#define SPLAT_ALWAYS_INLINE inline
+#define SPLAT_INLINE_LAMBDA
+#endif
+
 namespace splat
 {
 #if defined(__GNUC__)

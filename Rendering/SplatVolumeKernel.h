@@ -171,18 +171,19 @@ inline bool ProjectVolumeKernel(const glm::dmat4& eyeToClip, const glm::dvec2& v
 /**
  * The footprint of a normalized Gaussian of eye-space covariance eyeCovariance (see the file
  * comment): Amplitude * exp(-beta) is its integral along the ray, low-pass filtered, per unit
- * of kernel mass. The low-pass term keeps the 2x2 covariance invertible (|M| >= 1) for
+ * of kernel mass. The filter's variance (1 px^2, the unit low-pass, unless another screen
+ * filter is asked for: splat::FilterVariance) keeps the 2x2 covariance invertible for
  * degenerate kernels (zero scales, eigenvalue ratios of 1e12).
  */
-inline ResamplingKernel MakeVolumeFootprint(
-  const VolumeProjection& projection, const glm::dmat3& eyeCovariance, double cutoff)
+inline ResamplingKernel MakeVolumeFootprint(const VolumeProjection& projection,
+  const glm::dmat3& eyeCovariance, double cutoff, double filterVariance = 1.0)
 {
   const glm::dmat3& J = projection.Jacobian;
   const glm::dmat3 rayCovariance = J * eyeCovariance * glm::transpose(J);
   ResamplingKernel k;
   k.Center = projection.Center;
   k.Cutoff = cutoff;
-  k.Covariance = glm::dmat2(rayCovariance) + glm::dmat2(1.0);
+  k.Covariance = glm::dmat2(rayCovariance) + glm::dmat2(filterVariance);
   const double detM = glm::determinant(k.Covariance);
   k.Conic = glm::inverse(k.Covariance);
   k.Amplitude = std::abs(glm::determinant(J)) * InverseTwoPi / std::sqrt(detM);

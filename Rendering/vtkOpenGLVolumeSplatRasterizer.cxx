@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkOpenGLVolumeSplatRasterizer.h"
 
+#include "SplatCaptureKernel.h"
 #include "SplatOpenGLUtilities.h"
 #include "SplatSphericalHarmonics.h"
 #include "SplatVolumeKernel.h"
@@ -484,6 +485,13 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
   program->SetUniformf("compensation", static_cast<float>(splat::TruncationCompensation(cutoff)));
   program->SetUniformi("perspective", rays.Perspective ? 1 : 0);
   program->SetUniformi("peakOpacity", internal.Input.PeakOpacity ? 1 : 0);
+  // The rules captures were trained with, where the CPU draws them by
+  // vtkGaussianSplatRasterizer.
+  const auto filter = static_cast<splat::FootprintFilter>(settings->GetFootprintFilter());
+  program->SetUniformi(
+    "captureRules", internal.Input.PeakOpacity && mode == Rasterizer::DEPTH_SORTED ? 1 : 0);
+  program->SetUniformf("filterVariance", static_cast<float>(splat::FilterVariance(filter)));
+  program->SetUniformi("antialiased", filter == splat::FootprintFilter::Antialiased ? 1 : 0);
   program->SetUniformi("sharedCovariance", internal.SharedCovariance ? 1 : 0);
   program->SetUniformMatrix3x3(
     "sharedEyeCovariance", const_cast<float*>(glm::value_ptr(sharedEyeCovariance)));

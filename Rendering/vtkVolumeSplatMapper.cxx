@@ -269,17 +269,24 @@ vtkVolumeSplatMapper::~vtkVolumeSplatMapper()
 //------------------------------------------------------------------------------
 void vtkVolumeSplatMapper::SetOrderingMode(int mode)
 {
-  if (mode != this->Rasterizer->GetOrderingMode())
+  mode = std::min(std::max(mode, static_cast<int>(BLENDED)), static_cast<int>(AUTOMATIC));
+  if (mode != this->OrderingMode)
   {
-    this->Rasterizer->SetOrderingMode(mode);
+    this->OrderingMode = mode;
     this->Modified();
   }
 }
 
 //------------------------------------------------------------------------------
-int vtkVolumeSplatMapper::GetOrderingMode()
+void vtkVolumeSplatMapper::SetFootprintFilter(int filter)
 {
-  return this->Rasterizer->GetOrderingMode();
+  filter =
+    std::min(std::max(filter, static_cast<int>(LOW_PASS_FILTER)), static_cast<int>(AUTOMATIC_FILTER));
+  if (filter != this->FootprintFilter)
+  {
+    this->FootprintFilter = filter;
+    this->Modified();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -825,6 +832,14 @@ void vtkVolumeSplatMapper::Render(vtkRenderer* ren, vtkVolume* volume)
   }
   this->Compositor->MoveGraphicsResources(ren, this);
   this->LastBackend = this->SelectBackend(ren);
+  // The automatic settings follow the kind of kernels: captures are drawn as they were trained.
+  const bool capture = this->Kernels->View.PeakOpacity;
+  this->LastOrderingMode = this->OrderingMode != AUTOMATIC ? this->OrderingMode
+                                                           : (capture ? DEPTH_SORTED : BLENDED);
+  this->Rasterizer->SetOrderingMode(this->LastOrderingMode);
+  this->Rasterizer->SetFootprintFilter(this->FootprintFilter != AUTOMATIC_FILTER
+      ? this->FootprintFilter
+      : (capture ? DILATION_FILTER : LOW_PASS_FILTER));
 
   int width, height, originX, originY;
   ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);
@@ -958,7 +973,9 @@ void vtkVolumeSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   auto name = [](const char* s) { return s ? s : "(none)"; };
-  os << indent << "OrderingMode: " << this->GetOrderingMode() << "\n";
+  os << indent << "OrderingMode: " << this->OrderingMode << "\n";
+  os << indent << "LastOrderingMode: " << this->LastOrderingMode << "\n";
+  os << indent << "FootprintFilter: " << this->FootprintFilter << "\n";
   os << indent << "BlendThreshold: " << this->GetBlendThreshold() << "\n";
   os << indent << "SheetResampling: " << this->GetSheetResampling() << "\n";
   os << indent << "SheetMerging: " << this->GetSheetMerging() << "\n";

@@ -126,22 +126,65 @@ public:
    */
   enum OrderingModes
   {
-    BLENDED = 0,     ///< lists blended near their region boundaries (default)
-    CLIPPED = 1,     ///< each pixel from the list of its ray's dominant axis
-    SINGLE_AXIS = 2, ///< one list per frame, the central ray's (Westover)
-    DEPTH_SORTED = 3 ///< a global per-frame sort by eye-space depth
+    BLENDED = 0,      ///< lists blended near their region boundaries
+    CLIPPED = 1,      ///< each pixel from the list of its ray's dominant axis
+    SINGLE_AXIS = 2,  ///< one list per frame, the central ray's (Westover)
+    DEPTH_SORTED = 3, ///< a global per-frame sort by eye-space depth
+    AUTOMATIC = 4     ///< DEPTH_SORTED for captures, BLENDED for density kernels (default)
   };
 
   ///@{
   /**
-   * Visibility ordering: BLENDED (default), CLIPPED, SINGLE_AXIS or DEPTH_SORTED.
+   * Visibility ordering: AUTOMATIC (default), BLENDED, CLIPPED, SINGLE_AXIS or DEPTH_SORTED.
+   * AUTOMATIC follows the kind of kernels: captures (an opacity array: 3D Gaussian Splatting)
+   * were optimized for their exact per-Gaussian depth order (DEPTH_SORTED, drawn under the
+   * rules of their rasterizer on the CPU: vtkGaussianSplatRasterizer), density kernels (image
+   * data, sparse grids, kernels through transfer functions) take the three axis lists blended
+   * per pixel (BLENDED). GetLastOrderingMode says which ran.
    */
   void SetOrderingMode(int mode);
-  int GetOrderingMode();
+  vtkGetMacro(OrderingMode, int);
+  void SetOrderingModeToAutomatic() { this->SetOrderingMode(AUTOMATIC); }
   void SetOrderingModeToBlended() { this->SetOrderingMode(BLENDED); }
   void SetOrderingModeToClipped() { this->SetOrderingMode(CLIPPED); }
   void SetOrderingModeToSingleAxis() { this->SetOrderingMode(SINGLE_AXIS); }
   void SetOrderingModeToDepthSorted() { this->SetOrderingMode(DEPTH_SORTED); }
+  ///@}
+
+  /**
+   * The ordering the last render used (AUTOMATIC resolved; AUTOMATIC before the first).
+   */
+  vtkGetMacro(LastOrderingMode, int);
+
+  /**
+   * Screen filters of the footprints (splat::FootprintFilter).
+   */
+  enum FootprintFilters
+  {
+    LOW_PASS_FILTER = 0,    ///< EWA's unit screen low-pass (1 px^2)
+    DILATION_FILTER = 1,    ///< the 0.3 px^2 dilation captures are trained with
+    ANTIALIASED_FILTER = 2, ///< the dilation, peak opacities compensated (Mip-Splatting)
+    AUTOMATIC_FILTER = 3    ///< DILATION for captures, LOW_PASS for density kernels (default)
+  };
+
+  ///@{
+  /**
+   * The screen filter convolved with every footprint: LOW_PASS_FILTER, EWA's band limit of
+   * 1 px^2 (Zwicker et al.); DILATION_FILTER, the 0.3 px^2 added to the projected covariance
+   * with the peak opacity unchanged that 3D Gaussian Splatting captures are trained with (the
+   * image their optimization produced: their thin features drawn 1 px^2 wider come out fat);
+   * ANTIALIASED_FILTER, the dilation with each peak opacity scaled by
+   * sqrt(|V'| / |V' + 0.3 I|) (gsplat's antialiased mode, Mip-Splatting's 2D filter), which keeps
+   * sub-pixel Gaussians from aliasing in views far from the capture's training range; or
+   * AUTOMATIC_FILTER (default): DILATION for captures, LOW_PASS for density kernels, whose
+   * footprints keep their integral under any filter.
+   */
+  void SetFootprintFilter(int filter);
+  vtkGetMacro(FootprintFilter, int);
+  void SetFootprintFilterToAutomatic() { this->SetFootprintFilter(AUTOMATIC_FILTER); }
+  void SetFootprintFilterToLowPass() { this->SetFootprintFilter(LOW_PASS_FILTER); }
+  void SetFootprintFilterToDilation() { this->SetFootprintFilter(DILATION_FILTER); }
+  void SetFootprintFilterToAntialiased() { this->SetFootprintFilter(ANTIALIASED_FILTER); }
   ///@}
 
   ///@{
@@ -308,6 +351,9 @@ protected:
 
   int Backend = 0;
   int LastBackend = 0; // no render yet
+  int OrderingMode = AUTOMATIC;
+  int LastOrderingMode = AUTOMATIC; // no render yet
+  int FootprintFilter = AUTOMATIC_FILTER;
   char* CovarianceArrayName = nullptr;
   char* ScaleArrayName = nullptr;
   char* RotationArrayName = nullptr;

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkVolumeSplatRasterizer.h"
 
+#include "SplatCaptureKernel.h"
 #include "SplatSphericalHarmonics.h"
 #include "SplatVolumeLayerCompositor.h"
 #include "SplatVolumeKernel.h"
+#include "vtkGaussianSplatRasterizer.h"
 #include "vtkVolumeSplatSheetCompositor.h"
 
 #include "vtkNew.h"
@@ -64,8 +66,10 @@ struct vtkVolumeSplatRasterizer::Internals
   std::array<std::vector<vtkIdType>, 4> Offsets;
   std::array<std::vector<BinnedKernel>, 4> Bins;
   std::array<std::vector<glm::vec4>, 4> Buffers;
-  // Image data's sheets, and the frame's colors of shaded kernels for them.
+  // Image data's sheets; captures in their depth order; the frame's colors of shaded kernels
+  // for them.
   vtkNew<vtkVolumeSplatSheetCompositor> Sheets;
+  vtkNew<vtkGaussianSplatRasterizer> Captures;
   std::vector<float> ShadedColors;
   // The kernels' spherical-harmonic colors for ViewKey, the view point (w = 1) or the view
   // axis (w = 0) in model coordinates, up to ViewDegree (0: not evaluated).
@@ -230,6 +234,11 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
   {
     return;
   }
+  if (this->OrderingMode == DEPTH_SORTED && this->Input.PeakOpacity)
+  {
+    this->RenderCaptures(camera);
+    return;
+  }
   const int bands = (height + BandHeight - 1) / BandHeight;
   const int mode = this->OrderingMode;
   const glm::dvec2 viewport(width, height);
@@ -343,6 +352,8 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
   const double farDistance = splat::FarPlaneDistance(camera.EyeToClip);
   const double cutoff = this->Cutoff;
   const double compensation = splat::TruncationCompensation(cutoff);
+  const auto filter = static_cast<splat::FootprintFilter>(this->FootprintFilter);
+  const double filterVariance = splat::FilterVariance(filter);
   // Normals go to eye coordinates by the inverse transpose.
   const glm::mat3 normalToEye(glm::transpose(glm::inverse(linear)));
   const float* viewColors = this->UpdateViewColors(camera, rays.Perspective);
@@ -373,7 +384,7 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
           continue;
         }
         const splat::ResamplingKernel footprint =
-          splat::MakeVolumeFootprint(projection, eyeCovariance, cutoff);
+          splat::MakeVolumeFootprint(projection, eyeCovariance, cutoff, filterVariance);
         glm::ivec4 box;
         if (!splat::CoveredPixels(footprint.Center, footprint.HalfExtent, width, height, box))
         {
@@ -390,8 +401,11 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
         s.ConicXY = static_cast<float>(footprint.Conic[1][0]);
         s.ConicYY = static_cast<float>(0.5 * footprint.Conic[1][1]);
         const double strength = input.Strengths[i];
-        s.Amplitude = static_cast<float>(
-          input.PeakOpacity ? strength : strength * footprint.Amplitude * compensation);
+        s.Amplitude = static_cast<float>(input.PeakOpacity
+            ? strength *
+              splat::PeakOpacityCompensation(
+                filter, footprint.Covariance - glm::dmat2(filterVariance))
+            : strength * footprint.Amplitude * compensation);
         s.Depth = static_cast<float>(-e.z);
         glm::vec3 color(colors[3 * i], colors[3 * i + 1], colors[3 * i + 2]);
         if (input.Normals)
@@ -536,9 +550,7 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
 
   // 4. Compositing, band by band: each list into its own buffer, front to back in each
   // direction the band's pixels need, then the buffers merged with the squared weights.
-  const std::vector<float> sceneEyeDepths = this->SceneDepths.size() == pixels
-    ? splat::EyeDepthsOfWindowDepths(glm::inverse(camera.EyeToClip), this->SceneDepths)
-    : std::vector<float>();
+  const std::vector<float> sceneEyeDepths = this->SceneEyeDepths(camera);
   const float* sceneDepths = sceneEyeDepths.empty() ? nullptr : sceneEyeDepths.data();
   const float cutoffF = static_cast<float>(cutoff);
   vtkSMPTools::For(0, bands, 1,
@@ -658,30 +670,7 @@ bool vtkVolumeSplatRasterizer::RenderSheets(const Camera& camera, const std::arr
   {
     return false;
   }
-  // Shaded kernels get their colors for this frame; the others emit their own.
-  const float* colors = input.Colors;
-  if (input.Normals)
-  {
-    std::vector<float>& shaded = this->Internal->ShadedColors;
-    shaded.resize(3 * input.Count);
-    const glm::dmat3 linear(camera.ModelToEye);
-    const glm::mat3 normalToEye(glm::transpose(glm::inverse(linear)));
-    const bool parallel = splat::IsParallelProjection(camera.EyeToClip);
-    vtkSMPTools::For(0, static_cast<vtkIdType>(input.Count),
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType i = begin; i < end; ++i)
-        {
-          const double* p = input.Positions + 3 * i;
-          const glm::vec3 eye(camera.ModelToEye * glm::dvec4(p[0], p[1], p[2], 1.0));
-          const float* c = input.Colors + 3 * i;
-          const glm::vec3 color = this->ShadeKernel(
-            glm::vec3(c[0], c[1], c[2]), eye, normalToEye, input.Normals + 3 * i, parallel);
-          std::copy_n(&color.x, 3, shaded.begin() + 3 * i);
-        }
-      });
-    colors = shaded.data();
-  }
+  const float* colors = this->FrameColors(camera);
   const std::size_t pixels = this->Colors.size() / 4;
   for (int list = 0; list < 3; ++list)
   {
@@ -693,17 +682,79 @@ bool vtkVolumeSplatRasterizer::RenderSheets(const Camera& camera, const std::arr
         this->Internal->Buffers[list]);
     }
   }
+  this->MergeAllBuffers(used);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatRasterizer::MergeAllBuffers(const std::array<bool, 4>& used)
+{
+  const std::size_t pixels = this->Colors.size() / 4;
   const vtkIdType chunk = 1 << 14;
   vtkSMPTools::For(0, static_cast<vtkIdType>((pixels + chunk - 1) / chunk),
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType c = begin; c < end; ++c)
       {
-        this->MergeBuffers(
-          c * chunk, std::min<std::size_t>(pixels, (c + 1) * chunk), used);
+        this->MergeBuffers(c * chunk, std::min<std::size_t>(pixels, (c + 1) * chunk), used);
       }
     });
-  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkVolumeSplatRasterizer::RenderCaptures(const Camera& camera)
+{
+  vtkGaussianSplatRasterizer* captures = this->Internal->Captures;
+  captures->SetFootprintFilter(static_cast<splat::FootprintFilter>(this->FootprintFilter));
+  const std::vector<float> sceneEyeDepths = this->SceneEyeDepths(camera);
+  captures->Render(this->Input, this->FrameColors(camera), camera,
+    sceneEyeDepths.empty() ? nullptr : sceneEyeDepths.data(), this->Internal->Buffers[DepthList]);
+  this->Traversed[DepthList] = true;
+  this->Projected[DepthList] = captures->GetProjectedCount();
+  this->NearPlaneCount = captures->GetNearPlaneCount();
+  this->FrustumCulledCount = captures->GetOutsideViewCount();
+  ++this->SortCount;
+  this->MergeAllBuffers({ false, false, false, true });
+}
+
+//------------------------------------------------------------------------------
+const float* vtkVolumeSplatRasterizer::FrameColors(const Camera& camera)
+{
+  const Kernels& input = this->Input;
+  const bool parallel = splat::IsParallelProjection(camera.EyeToClip);
+  const float* viewColors = this->UpdateViewColors(camera, !parallel);
+  const float* colors = viewColors ? viewColors : input.Colors;
+  if (!input.Normals)
+  {
+    return colors;
+  }
+  std::vector<float>& shaded = this->Internal->ShadedColors;
+  shaded.resize(3 * input.Count);
+  const glm::dmat3 linear(camera.ModelToEye);
+  const glm::mat3 normalToEye(glm::transpose(glm::inverse(linear)));
+  vtkSMPTools::For(0, static_cast<vtkIdType>(input.Count),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const double* p = input.Positions + 3 * i;
+        const glm::vec3 eye(camera.ModelToEye * glm::dvec4(p[0], p[1], p[2], 1.0));
+        const float* c = colors + 3 * i;
+        const glm::vec3 color = this->ShadeKernel(
+          glm::vec3(c[0], c[1], c[2]), eye, normalToEye, input.Normals + 3 * i, parallel);
+        std::copy_n(&color.x, 3, shaded.begin() + 3 * i);
+      }
+    });
+  return shaded.data();
+}
+
+//------------------------------------------------------------------------------
+std::vector<float> vtkVolumeSplatRasterizer::SceneEyeDepths(const Camera& camera) const
+{
+  const std::size_t pixels = this->Colors.size() / 4;
+  return this->SceneDepths.size() == pixels && pixels > 0
+    ? splat::EyeDepthsOfWindowDepths(glm::inverse(camera.EyeToClip), this->SceneDepths)
+    : std::vector<float>();
 }
 
 //------------------------------------------------------------------------------
@@ -771,6 +822,7 @@ void vtkVolumeSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OrderingMode: " << this->OrderingMode << "\n";
   os << indent << "BlendThreshold: " << this->BlendThreshold << "\n";
   os << indent << "Cutoff: " << this->Cutoff << "\n";
+  os << indent << "FootprintFilter: " << this->FootprintFilter << "\n";
   os << indent << "SheetResampling: " << this->SheetResampling << "\n";
   os << indent << "SheetMerging: " << this->SheetMerging << "\n";
   os << indent << "SheetsUsed: " << this->SheetsUsed << "\n";

@@ -18,7 +18,9 @@
  *   C = sum C_a w_a^2 / sum w_a^2 (paper 003, eq. 1);
  * - Clipped: each pixel from the list of its dominant axis only (paper 003, section 5);
  * - SingleAxis: one list for the whole frame, the central ray's (Westover);
- * - DepthSorted: one global front-to-back sort of the kernels by eye-space depth per frame.
+ * - DepthSorted: one global front-to-back sort of the kernels by eye-space depth per frame;
+ *   for kernels with a peak opacity (3D Gaussian Splatting captures) the frame is drawn by
+ *   vtkGaussianSplatRasterizer under the rules of the rasterizer captures are trained with.
  *
  * A frame has four steps: per-pixel list weights; setup of every kernel, parallel over kernels
  * (footprint, bounding box, skip reasons; spherical-harmonic colors, evaluated again only when
@@ -106,6 +108,17 @@ public:
    */
   vtkSetClampMacro(Cutoff, double, 1e-3, 50.0);
   vtkGetMacro(Cutoff, double);
+  ///@}
+
+  ///@{
+  /**
+   * The screen filter of the footprints, a splat::FootprintFilter: LowPass (0, the default: the
+   * unit EWA low-pass), Dilation (1, the 0.3 px^2 that captures are trained with) or
+   * Antialiased (2, the dilation with the peak opacity compensated; as Dilation for density
+   * kernels, whose footprints keep their integral under any filter).
+   */
+  vtkSetClampMacro(FootprintFilter, int, 0, 2);
+  vtkGetMacro(FootprintFilter, int);
   ///@}
 
   ///@{
@@ -278,8 +291,17 @@ protected:
   void BuildDepthList();
   /// The frame through vtkVolumeSplatSheetCompositor; false where it does not apply.
   bool RenderSheets(const Camera& camera, const std::array<bool, 4>& used);
+  /// The frame of a capture in its depth order, through vtkGaussianSplatRasterizer.
+  void RenderCaptures(const Camera& camera);
+  /// The kernels' colors for this frame: seen from the camera (spherical harmonics), then
+  /// shaded (SetLighting) where the kernels have normals.
+  const float* FrameColors(const Camera& camera);
+  /// The opaque scene's eye depths per pixel (SetSceneDepths), empty for none.
+  std::vector<float> SceneEyeDepths(const Camera& camera) const;
   /// Merges the lists' buffers into the image's pixels [first, last).
   void MergeBuffers(std::size_t first, std::size_t last, const std::array<bool, 4>& used);
+  /// The same for every pixel, in parallel.
+  void MergeAllBuffers(const std::array<bool, 4>& used);
   /// The color of a kernel at eye position `eye` lit with its model normal (SetLighting).
   glm::vec3 ShadeKernel(const glm::vec3& color, const glm::vec3& eye,
     const glm::mat3& normalToEye, const float* modelNormal, bool parallelProjection) const;
@@ -290,6 +312,7 @@ protected:
   int OrderingMode = BLENDED;
   double BlendThreshold = 0.85;
   double Cutoff;
+  int FootprintFilter = 0;
   int MaximumSphericalHarmonicsDegree = 3;
   bool SheetResampling = true;
   bool SheetMerging = true;

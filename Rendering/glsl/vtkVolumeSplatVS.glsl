@@ -4,7 +4,8 @@
 // for the descending traversal of a list), four vertices (a triangle strip) covering the box of
 // its footprint's cutoff ellipse. The per-kernel setup mirrors vtkVolumeSplatRasterizer's step 2
 // and SplatVolumeKernel.h (CrossesNearPlane, ProjectVolumeKernel, MakeVolumeFootprint,
-// TruncationCompensation) and CoveredPixels (SplatSurfelKernel.h) line by line, colors kernels
+// TruncationCompensation), SplatCaptureKernel.h (MakeCaptureFootprint, for captures in their
+// depth order) and CoveredPixels (SplatSurfelKernel.h) line by line, colors kernels
 // with spherical harmonics as vtkVolumeSplatRasterizer::UpdateViewColors does and shades
 // kernels with normals as vtkVolumeSplatRasterizer::ShadeKernel does.
 
@@ -26,6 +27,10 @@ uniform float cutoff;
 uniform float compensation; // TruncationCompensation(cutoff)
 uniform int perspective;
 uniform int peakOpacity;
+// Captures in their depth order: the rules of SplatCaptureKernel.h.
+uniform int captureRules;
+uniform float filterVariance; // FilterVariance(filter)
+uniform int antialiased;      // FootprintFilter::Antialiased
 uniform int sharedCovariance;
 uniform mat3 sharedEyeCovariance;
 uniform int shaded;
@@ -49,8 +54,11 @@ flat out vec3 splatConic; // 1/2 M^-1 as (xx, 2 xy, yy): beta = dx^2 xx + dx dy 
 flat out float splatAmplitude; // optical depth (density model) or opacity (peak model)
 flat out float splatDepth;     // eye depth of the center
 flat out vec3 splatColor;
+flat out vec2 splatHalfExtent; // captures: the pixels whose centers lie within it
 
 const float InverseTwoPi = 0.15915494309189533577;
+const float CaptureJacobianClamp = 1.3;
+const float CaptureMinimumAlpha = 1.0 / 255.0;
 
 void cull()
 {
@@ -73,10 +81,13 @@ void main()
   }
 
   // CrossesNearPlane, then ProjectVolumeKernel (the center strictly in front of the eye), then
-  // the far plane.
+  // the far plane; captures: their center at least the near distance in front of the eye.
   float zExtent = sqrt(2.0 * cutoff * max(V[2][2], 0.0));
   vec4 c = eyeToClip * vec4(e, 1.0);
-  if (!(-e.z - zExtent > nearDistance) || !(c.w > 0.0) || -e.z - zExtent > farDistance)
+  bool drawn = captureRules != 0
+    ? -e.z >= nearDistance && c.w > 0.0
+    : -e.z - zExtent > nearDistance && c.w > 0.0 && !(-e.z - zExtent > farDistance);
+  if (!drawn)
   {
     cull();
     return;
@@ -84,22 +95,44 @@ void main()
   vec2 ndc = c.xy / c.w;
   vec2 halfSize = 0.5 * viewportSize;
   vec2 center = (ndc + 1.0) * halfSize;
-  // Ray space: pixel x, pixel y, distance along the ray (from the eye, or the eye plane).
+  // Ray space: pixel x, pixel y, distance along the ray (from the eye, or the eye plane);
+  // captures take the Jacobian at their center's NDC clamped to +-1.3.
+  vec2 jacobianNdc =
+    captureRules != 0 ? clamp(ndc, -CaptureJacobianClamp, CaptureJacobianClamp) : ndc;
   vec3 distanceGradient = perspective != 0 ? e / length(e) : vec3(0.0, 0.0, -1.0);
   mat3 J;
   for (int axis = 0; axis < 3; ++axis)
   {
     vec4 d = eyeToClip[axis];
-    J[axis] = vec3((d.xy - ndc * d.w) / c.w * halfSize, distanceGradient[axis]);
+    J[axis] = vec3((d.xy - jacobianNdc * d.w) / c.w * halfSize, distanceGradient[axis]);
   }
 
-  // MakeVolumeFootprint: M = (J V J^T)_2x2 + I.
+  // MakeVolumeFootprint: M = (J V J^T)_2x2 + the filter's variance.
   mat3 rayCovariance = J * V * transpose(J);
-  float mxx = rayCovariance[0][0] + 1.0;
+  float mxx = rayCovariance[0][0] + filterVariance;
   float mxy = rayCovariance[1][0];
-  float myy = rayCovariance[1][1] + 1.0;
+  float myy = rayCovariance[1][1] + filterVariance;
   float detM = mxx * myy - mxy * mxy;
+  float strength = positionStrength.w;
+  // PeakOpacityCompensation.
+  float opacity = antialiased != 0
+    ? strength * sqrt(max(rayCovariance[0][0] * rayCovariance[1][1] - mxy * mxy, 0.0) / detM)
+    : strength;
   vec2 halfExtent = sqrt(2.0 * cutoff * vec2(mxx, myy));
+  if (captureRules != 0)
+  {
+    // MakeCaptureFootprint: the reference's square, within it the ellipse where alpha can
+    // reach 1/255.
+    float mid = 0.5 * (mxx + myy);
+    float radius = ceil(3.0 * sqrt(mid + sqrt(max(0.1, mid * mid - detM))));
+    float level = 2.0 * log(min(opacity, 1.0) / CaptureMinimumAlpha) * 1.001;
+    if (!(detM > 0.0) || !(opacity >= CaptureMinimumAlpha))
+    {
+      cull();
+      return;
+    }
+    halfExtent = min(vec2(radius), sqrt(level * vec2(mxx, myy)) + 1e-3);
+  }
   // CoveredPixels: some pixel center inside the viewport.
   vec2 lo = center - halfExtent - 0.5;
   vec2 hi = center + halfExtent - 0.5;
@@ -110,11 +143,11 @@ void main()
     return;
   }
 
-  float strength = positionStrength.w;
   splatCenter = center;
+  splatHalfExtent = halfExtent;
   splatConic = vec3(0.5 * myy, -mxy, 0.5 * mxx) / detM;
   splatAmplitude = peakOpacity != 0
-    ? strength
+    ? opacity
     : strength * abs(determinant(J)) * InverseTwoPi / sqrt(detM) * compensation;
   splatDepth = -e.z;
   splatColor = texelFetch(kernels, kernelStride * k + 1).rgb;

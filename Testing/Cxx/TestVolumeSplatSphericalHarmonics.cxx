@@ -208,7 +208,9 @@ void ViewDependence(int backend)
   }
 
   // Degree 0 from every view, then degree 3 (here 1) again: the camera moves and the degree
-  // changes, the lists stay.
+  // changes, the axis lists stay (a capture's default order, by depth, is sorted every frame).
+  scene.Mapper->SetOrderingModeToBlended();
+  scene.View(Eyes[0]);
   const vtkIdType builds = scene.Mapper->GetNumberOfListBuilds();
   scene.Mapper->SetMaximumSphericalHarmonicsDegree(0);
   for (int view = 0; view < 4; ++view)

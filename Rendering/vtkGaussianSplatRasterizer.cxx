@@ -1,0 +1,372 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkGaussianSplatRasterizer.h"
+
+#include "SplatFloat8.h"
+
+#include "vtkObjectFactory.h"
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <numeric>
+
+vtkStandardNewMacro(vtkGaussianSplatRasterizer);
+
+namespace
+{
+// Pixels per tile side: two groups of eight columns per row.
+constexpr int TileSize = 16;
+constexpr int Lanes = 8;
+
+// A kept kernel on the screen, in the single precision of the per-pixel loop.
+struct ScreenSplat
+{
+  float CenterX, CenterY;
+  float ConicXX, ConicXY, ConicYY; // alpha = Opacity exp(-(XX dx^2 + XY dx dy + YY dy^2))
+  float Opacity;
+  float Depth;
+  float Color[3];
+  int X0, X1, Y0, Y1; // inclusive pixel bounds
+};
+
+// A float's bits as an unsigned key of the same order (negative floats included).
+std::uint32_t SortKey(float value)
+{
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, sizeof(bits));
+  return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+}
+
+// Sorts `ids` by `keys`, stably: least significant digit first, 11 bits a pass. No library at
+// hand sorts stably in linear time (std::stable_sort is a merge sort, three to four times
+// slower on a million kernels).
+void RadixSort(std::vector<std::uint32_t>& keys, std::vector<std::uint32_t>& ids)
+{
+  constexpr int Bits = 11;
+  constexpr std::uint32_t Mask = (1u << Bits) - 1;
+  const std::size_t n = keys.size();
+  std::vector<std::uint32_t> keysOut(n);
+  std::vector<std::uint32_t> idsOut(n);
+  std::vector<std::size_t> starts(Mask + 1);
+  for (int shift = 0; shift < 32; shift += Bits)
+  {
+    std::fill(starts.begin(), starts.end(), 0);
+    for (const std::uint32_t key : keys)
+    {
+      ++starts[(key >> shift) & Mask];
+    }
+    if (std::find(starts.begin(), starts.end(), n) != starts.end())
+    {
+      continue; // every key has the same digit: the pass would move nothing
+    }
+    std::size_t next = 0;
+    for (std::size_t& start : starts)
+    {
+      const std::size_t count = start;
+      start = next;
+      next += count;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const std::size_t place = starts[(keys[i] >> shift) & Mask]++;
+      keysOut[place] = keys[i];
+      idsOut[place] = ids[i];
+    }
+    keys.swap(keysOut);
+    ids.swap(idsOut);
+  }
+}
+
+// Composites one tile's kernels (entries into sorted, in depth order) front to back into the
+// tile of the image whose lower left pixel is (x0, y0). The tile's transmittance is kept
+// negated once a pixel stops, so that one comparison per lane tells both.
+SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* sorted, const std::uint32_t* entries,
+  std::size_t count, int x0, int y0, int width, int height, const float* sceneDepths,
+  glm::vec4* image)
+{
+  using splat::Float8;
+  constexpr int Pixels = TileSize * TileSize;
+  const int columns = std::min(TileSize, width - x0);
+  const int rows = std::min(TileSize, height - y0);
+  alignas(32) float transmittance[Pixels];
+  alignas(32) float red[Pixels] = {};
+  alignas(32) float green[Pixels] = {};
+  alignas(32) float blue[Pixels] = {};
+  alignas(32) float scene[Pixels];
+  std::fill_n(transmittance, Pixels, 1.0f);
+  std::fill_n(scene, Pixels, std::numeric_limits<float>::infinity());
+  for (int y = 0; sceneDepths && y < rows; ++y)
+  {
+    std::copy_n(sceneDepths + static_cast<std::size_t>(y0 + y) * width + x0, columns,
+      scene + y * TileSize);
+  }
+  bool rowOpen[TileSize] = {};
+  std::fill_n(rowOpen, rows, true);
+  const Float8 minimumAlpha(splat::CaptureMinimumAlpha);
+  const Float8 maximumAlpha(splat::CaptureMaximumAlpha);
+  const Float8 minimumTransmittance(splat::CaptureMinimumTransmittance);
+  for (std::size_t n = 0; n < count; ++n)
+  {
+    // Every 32 kernels: which rows still integrate; the tile ends when none does.
+    if (n % 32 == 31)
+    {
+      bool open = false;
+      for (int y = 0; y < rows; ++y)
+      {
+        const float* t = transmittance + y * TileSize;
+        rowOpen[y] = std::any_of(t, t + columns, [](float v) { return v > 0.0f; });
+        open = open || rowOpen[y];
+      }
+      if (!open)
+      {
+        break;
+      }
+    }
+    const ScreenSplat& s = sorted[entries[n]];
+    const int xa = std::max(s.X0 - x0, 0);
+    const int xb = std::min(s.X1 - x0, columns - 1);
+    const int ya = std::max(s.Y0 - y0, 0);
+    const int yb = std::min(s.Y1 - y0, rows - 1);
+    const Float8 first(static_cast<float>(xa));
+    const Float8 last(static_cast<float>(xb));
+    const float offsetX = static_cast<float>(x0) + 0.5f - s.CenterX;
+    const Float8 depth(s.Depth);
+    for (int y = ya; y <= yb; ++y)
+    {
+      if (!rowOpen[y])
+      {
+        continue;
+      }
+      const float dy = static_cast<float>(y0 + y) + 0.5f - s.CenterY;
+      const float cross = s.ConicXY * dy;
+      const float rowTerm = s.ConicYY * dy * dy;
+      for (int g = xa / Lanes; g <= xb / Lanes; ++g)
+      {
+        const int p = y * TileSize + g * Lanes;
+        const Float8 column = Float8::Iota() + static_cast<float>(g * Lanes);
+        const Float8 dx = column + offsetX;
+        const Float8 q = dx * (dx * s.ConicXX + cross) + rowTerm;
+        Float8 alpha = Float8::NegativeExponentialAbove(q) * s.Opacity;
+        alpha = Float8::SelectLess(alpha, maximumAlpha, alpha, maximumAlpha);
+        alpha = Float8::SelectLess(alpha, minimumAlpha, 0.0f, alpha);
+        alpha = Float8::SelectLess(column, first, 0.0f, alpha);
+        alpha = Float8::SelectLess(last, column, 0.0f, alpha);
+        alpha = Float8::SelectLess(Float8::Load(scene + p), depth, 0.0f, alpha);
+        const Float8 t = Float8::Load(transmittance + p);
+        const Float8 next = t * (1.0f - alpha);
+        // A pixel whose transmittance would fall below the minimum stops before this kernel
+        // (stopped pixels hold their transmittance negated, so `next` is negative there).
+        const Float8 weight = Float8::SelectLess(next, minimumTransmittance, 0.0f, alpha * t);
+        const Float8 stopped = Float8::SelectLess(t, 0.0f, t, 0.0f - t);
+        Float8::SelectLess(next, minimumTransmittance, stopped, next).Store(transmittance + p);
+        (Float8::Load(red + p) + weight * s.Color[0]).Store(red + p);
+        (Float8::Load(green + p) + weight * s.Color[1]).Store(green + p);
+        (Float8::Load(blue + p) + weight * s.Color[2]).Store(blue + p);
+      }
+    }
+  }
+  for (int y = 0; y < rows; ++y)
+  {
+    glm::vec4* out = image + static_cast<std::size_t>(y0 + y) * width + x0;
+    for (int x = 0; x < columns; ++x)
+    {
+      const int p = y * TileSize + x;
+      out[x] = glm::vec4(red[p], green[p], blue[p], 1.0f - std::abs(transmittance[p]));
+    }
+  }
+}
+}
+
+struct vtkGaussianSplatRasterizer::Internals
+{
+  // Per input kernel: its footprint, and why it is left out.
+  std::vector<ScreenSplat> Splats;
+  std::vector<splat::CaptureSkip> Skips;
+  // The kept kernels' depth keys and ids, then sorted; their footprints in that order.
+  std::vector<std::uint32_t> Keys;
+  std::vector<std::uint32_t> Order;
+  std::vector<ScreenSplat> Sorted;
+  // Per tile, its entries into Sorted in depth order: TileOffsets[t] to TileOffsets[t + 1].
+  std::vector<std::size_t> TileOffsets;
+  std::vector<std::uint32_t> TileEntries;
+};
+
+//------------------------------------------------------------------------------
+vtkGaussianSplatRasterizer::vtkGaussianSplatRasterizer()
+  : Internal(new Internals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkGaussianSplatRasterizer::~vtkGaussianSplatRasterizer()
+{
+  delete this->Internal;
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels& input,
+  const float* colors, const vtkVolumeSplatRasterizer::Camera& camera, const float* sceneDepths,
+  std::vector<glm::vec4>& image)
+{
+  this->ProjectedCount = 0;
+  this->NearPlaneCount = 0;
+  this->OutsideViewCount = 0;
+  this->TileEntryCount = 0;
+  const int width = std::max(camera.Viewport.x, 0);
+  const int height = std::max(camera.Viewport.y, 0);
+  image.assign(static_cast<std::size_t>(width) * height, glm::vec4(0.0f));
+  if (image.empty())
+  {
+    return;
+  }
+  Internals& internal = *this->Internal;
+
+  // 1. The footprints.
+  const vtkIdType n = static_cast<vtkIdType>(input.Count);
+  internal.Splats.resize(n);
+  internal.Skips.resize(n);
+  const glm::dmat3 toEye(camera.ModelToEye);
+  const double nearDistance = splat::NearPlaneDistance(camera.EyeToClip);
+  const glm::dvec2 viewport(width, height);
+  const splat::FootprintFilter filter = this->FootprintFilter;
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const double* p = input.Positions + 3 * i;
+        const glm::dvec3 e(camera.ModelToEye * glm::dvec4(p[0], p[1], p[2], 1.0));
+        splat::CaptureFootprint f;
+        internal.Skips[i] = splat::MakeCaptureFootprint(camera.EyeToClip, viewport,
+          nearDistance, e, toEye, splat::SymmetricFromComponents(input.Covariances + 6 * i),
+          input.Strengths[i], filter, f);
+        if (internal.Skips[i] == splat::CaptureSkip::Kept)
+        {
+          internal.Splats[i] = ScreenSplat{ static_cast<float>(f.Center.x),
+            static_cast<float>(f.Center.y), static_cast<float>(f.ConicXX),
+            static_cast<float>(f.ConicXY), static_cast<float>(f.ConicYY),
+            static_cast<float>(f.Opacity), static_cast<float>(f.Depth),
+            { colors[3 * i], colors[3 * i + 1], colors[3 * i + 2] }, f.Box.x, f.Box.y, f.Box.z,
+            f.Box.w };
+        }
+      }
+    });
+
+  // 2. The kept kernels sorted by depth, ties in id order, and their footprints in that order.
+  internal.Keys.clear();
+  internal.Order.clear();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    switch (internal.Skips[i])
+    {
+      case splat::CaptureSkip::Kept:
+        internal.Keys.push_back(SortKey(internal.Splats[i].Depth));
+        internal.Order.push_back(static_cast<std::uint32_t>(i));
+        break;
+      case splat::CaptureSkip::NearPlane:
+        ++this->NearPlaneCount;
+        break;
+      default:
+        ++this->OutsideViewCount;
+        break;
+    }
+  }
+  RadixSort(internal.Keys, internal.Order);
+  const vtkIdType kept = static_cast<vtkIdType>(internal.Order.size());
+  this->ProjectedCount = kept;
+  internal.Sorted.resize(kept);
+  vtkSMPTools::For(0, kept,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType r = begin; r < end; ++r)
+      {
+        internal.Sorted[r] = internal.Splats[internal.Order[r]];
+      }
+    });
+
+  // 3. The tiles' lists: a counting sort by tile in parallel over fixed chunks of the sorted
+  // kernels (each chunk counts its entries per tile, the counts become each chunk's first
+  // place in each tile's list, each chunk fills its places), so that each list is in depth
+  // order whatever the number of threads.
+  const int tilesX = (width + TileSize - 1) / TileSize;
+  const int tilesY = (height + TileSize - 1) / TileSize;
+  const vtkIdType tiles = static_cast<vtkIdType>(tilesX) * tilesY;
+  const vtkIdType chunkSize = std::max<vtkIdType>(1 << 16, (kept + 63) / 64);
+  const vtkIdType chunks = (kept + chunkSize - 1) / chunkSize;
+  std::vector<std::size_t> places(static_cast<std::size_t>(chunks * tiles), 0);
+  auto forEachEntry = [&](vtkIdType chunk, auto&& visit)
+  {
+    const vtkIdType end = std::min(kept, (chunk + 1) * chunkSize);
+    for (vtkIdType r = chunk * chunkSize; r < end; ++r)
+    {
+      const ScreenSplat& s = internal.Sorted[r];
+      for (int ty = s.Y0 / TileSize; ty <= s.Y1 / TileSize; ++ty)
+      {
+        for (int tx = s.X0 / TileSize; tx <= s.X1 / TileSize; ++tx)
+        {
+          visit(r, static_cast<vtkIdType>(ty) * tilesX + tx);
+        }
+      }
+    }
+  };
+  vtkSMPTools::For(0, chunks,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType c = begin; c < end; ++c)
+      {
+        std::size_t* count = places.data() + c * tiles;
+        forEachEntry(c, [count](vtkIdType, vtkIdType tile) { ++count[tile]; });
+      }
+    });
+  internal.TileOffsets.assign(tiles + 1, 0);
+  std::size_t next = 0;
+  for (vtkIdType tile = 0; tile < tiles; ++tile)
+  {
+    for (vtkIdType c = 0; c < chunks; ++c)
+    {
+      const std::size_t count = places[c * tiles + tile];
+      places[c * tiles + tile] = next;
+      next += count;
+    }
+    internal.TileOffsets[tile + 1] = next;
+  }
+  this->TileEntryCount = static_cast<vtkIdType>(next);
+  internal.TileEntries.resize(next);
+  vtkSMPTools::For(0, chunks,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType c = begin; c < end; ++c)
+      {
+        std::size_t* place = places.data() + c * tiles;
+        forEachEntry(c,
+          [&](vtkIdType r, vtkIdType tile)
+          { internal.TileEntries[place[tile]++] = static_cast<std::uint32_t>(r); });
+      }
+    });
+
+  // 4. The tiles, front to back.
+  vtkSMPTools::For(0, tiles,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType tile = begin; tile < end; ++tile)
+      {
+        const std::size_t first = internal.TileOffsets[tile];
+        CompositeTile(internal.Sorted.data(), internal.TileEntries.data() + first,
+          internal.TileOffsets[tile + 1] - first, static_cast<int>(tile % tilesX) * TileSize,
+          static_cast<int>(tile / tilesX) * TileSize, width, height, sceneDepths, image.data());
+      }
+    });
+}
+
+//------------------------------------------------------------------------------
+void vtkGaussianSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FootprintFilter: " << static_cast<int>(this->FootprintFilter) << "\n";
+  os << indent << "ProjectedCount: " << this->ProjectedCount << "\n";
+  os << indent << "NearPlaneCount: " << this->NearPlaneCount << "\n";
+  os << indent << "OutsideViewCount: " << this->OutsideViewCount << "\n";
+  os << indent << "TileEntryCount: " << this->TileEntryCount << "\n";
+}
