@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <numeric>
 
 vtkStandardNewMacro(vtkGaussianSplatRasterizer);
 
@@ -31,6 +30,20 @@ struct ScreenSplat
   int X0, X1, Y0, Y1; // inclusive pixel bounds
 };
 
+// How many kernels ahead the loops over a scattered order fetch their kernel.
+constexpr std::size_t PrefetchDistance = 8;
+
+// Asks for both cache lines a kernel can straddle.
+SPLAT_ALWAYS_INLINE void Prefetch(const ScreenSplat* s)
+{
+#if defined(__GNUC__)
+  __builtin_prefetch(s);
+  __builtin_prefetch(reinterpret_cast<const char*>(s + 1) - 1);
+#else
+  (void)s;
+#endif
+}
+
 // A float's bits as an unsigned key of the same order (negative floats included).
 std::uint32_t SortKey(float value)
 {
@@ -39,50 +52,22 @@ std::uint32_t SortKey(float value)
   return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
 }
 
-// Sorts `ids` by `keys`, stably: least significant digit first, 11 bits a pass. No library at
-// hand sorts stably in linear time (std::stable_sort is a merge sort, three to four times
-// slower on a million kernels).
-void RadixSort(std::vector<std::uint32_t>& keys, std::vector<std::uint32_t>& ids)
+// A tile's entry: the kernel's depth as a sort key in the high half, its id in the low half,
+// so that sorting the entries orders them by depth, ties by id.
+std::uint64_t TileEntry(float depth, vtkIdType id)
 {
-  constexpr int Bits = 11;
-  constexpr std::uint32_t Mask = (1u << Bits) - 1;
-  const std::size_t n = keys.size();
-  std::vector<std::uint32_t> keysOut(n);
-  std::vector<std::uint32_t> idsOut(n);
-  std::vector<std::size_t> starts(Mask + 1);
-  for (int shift = 0; shift < 32; shift += Bits)
-  {
-    std::fill(starts.begin(), starts.end(), 0);
-    for (const std::uint32_t key : keys)
-    {
-      ++starts[(key >> shift) & Mask];
-    }
-    if (std::find(starts.begin(), starts.end(), n) != starts.end())
-    {
-      continue; // every key has the same digit: the pass would move nothing
-    }
-    std::size_t next = 0;
-    for (std::size_t& start : starts)
-    {
-      const std::size_t count = start;
-      start = next;
-      next += count;
-    }
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const std::size_t place = starts[(keys[i] >> shift) & Mask]++;
-      keysOut[place] = keys[i];
-      idsOut[place] = ids[i];
-    }
-    keys.swap(keysOut);
-    ids.swap(idsOut);
-  }
+  return static_cast<std::uint64_t>(SortKey(depth)) << 32 | static_cast<std::uint32_t>(id);
 }
 
-// Composites one tile's kernels (entries into sorted, in depth order) front to back into the
-// tile of the image whose lower left pixel is (x0, y0). The tile's transmittance is kept
-// negated once a pixel stops, so that one comparison per lane tells both.
-SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* sorted, const std::uint32_t* entries,
+const ScreenSplat* KernelOf(const ScreenSplat* splats, std::uint64_t entry)
+{
+  return splats + (entry & 0xffffffffu);
+}
+
+// Composites one tile's kernels (sorted entries) front to back into the tile of the image
+// whose lower left pixel is (x0, y0). The tile's transmittance is kept negated once a pixel
+// stops, so that one comparison per lane tells both.
+SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uint64_t* entries,
   std::size_t count, int x0, int y0, int width, int height, const float* sceneDepths,
   glm::vec4* image)
 {
@@ -124,7 +109,13 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* sorted, const std::uin
         break;
       }
     }
-    const ScreenSplat& s = sorted[entries[n]];
+    // The tile's kernels lie all over memory (the depth order is not the input's): fetched
+    // ahead, they come while the kernels before them are composited.
+    if (n + PrefetchDistance < count)
+    {
+      Prefetch(KernelOf(splats, entries[n + PrefetchDistance]));
+    }
+    const ScreenSplat& s = *KernelOf(splats, entries[n]);
     const int xa = std::max(s.X0 - x0, 0);
     const int xb = std::min(s.X1 - x0, columns - 1);
     const int ya = std::max(s.Y0 - y0, 0);
@@ -184,13 +175,9 @@ struct vtkGaussianSplatRasterizer::Internals
   // Per input kernel: its footprint, and why it is left out.
   std::vector<ScreenSplat> Splats;
   std::vector<splat::CaptureSkip> Skips;
-  // The kept kernels' depth keys and ids, then sorted; their footprints in that order.
-  std::vector<std::uint32_t> Keys;
-  std::vector<std::uint32_t> Order;
-  std::vector<ScreenSplat> Sorted;
-  // Per tile, its entries into Sorted in depth order: TileOffsets[t] to TileOffsets[t + 1].
+  // Per tile, its entries (TileEntry): TileOffsets[t] to TileOffsets[t + 1].
   std::vector<std::size_t> TileOffsets;
-  std::vector<std::uint32_t> TileEntries;
+  std::vector<std::uint64_t> TileEntries;
 };
 
 //------------------------------------------------------------------------------
@@ -254,59 +241,40 @@ void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels&
       }
     });
 
-  // 2. The kept kernels sorted by depth, ties in id order, and their footprints in that order.
-  internal.Keys.clear();
-  internal.Order.clear();
-  for (vtkIdType i = 0; i < n; ++i)
+  for (const splat::CaptureSkip skip : internal.Skips)
   {
-    switch (internal.Skips[i])
-    {
-      case splat::CaptureSkip::Kept:
-        internal.Keys.push_back(SortKey(internal.Splats[i].Depth));
-        internal.Order.push_back(static_cast<std::uint32_t>(i));
-        break;
-      case splat::CaptureSkip::NearPlane:
-        ++this->NearPlaneCount;
-        break;
-      default:
-        ++this->OutsideViewCount;
-        break;
-    }
+    this->ProjectedCount += skip == splat::CaptureSkip::Kept;
+    this->NearPlaneCount += skip == splat::CaptureSkip::NearPlane;
+    this->OutsideViewCount += skip == splat::CaptureSkip::OutsideView;
   }
-  RadixSort(internal.Keys, internal.Order);
-  const vtkIdType kept = static_cast<vtkIdType>(internal.Order.size());
-  this->ProjectedCount = kept;
-  internal.Sorted.resize(kept);
-  vtkSMPTools::For(0, kept,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType r = begin; r < end; ++r)
-      {
-        internal.Sorted[r] = internal.Splats[internal.Order[r]];
-      }
-    });
 
-  // 3. The tiles' lists: a counting sort by tile in parallel over fixed chunks of the sorted
-  // kernels (each chunk counts its entries per tile, the counts become each chunk's first
-  // place in each tile's list, each chunk fills its places), so that each list is in depth
-  // order whatever the number of threads.
+  // 2. The tiles' lists: a counting sort of the kept kernels by tile in parallel over fixed
+  // chunks of the kernels (each chunk counts its entries per tile, the counts become each
+  // chunk's first place in each tile's list, each chunk fills its places), which reads the
+  // footprints in memory order; each tile's list is then sorted by depth where the tile is
+  // composited. Every entry holds its depth and id, so the lists do not depend on the number
+  // of threads.
   const int tilesX = (width + TileSize - 1) / TileSize;
   const int tilesY = (height + TileSize - 1) / TileSize;
   const vtkIdType tiles = static_cast<vtkIdType>(tilesX) * tilesY;
-  const vtkIdType chunkSize = std::max<vtkIdType>(1 << 16, (kept + 63) / 64);
-  const vtkIdType chunks = (kept + chunkSize - 1) / chunkSize;
+  const vtkIdType chunkSize = std::max<vtkIdType>(1 << 16, (n + 63) / 64);
+  const vtkIdType chunks = (n + chunkSize - 1) / chunkSize;
   std::vector<std::size_t> places(static_cast<std::size_t>(chunks * tiles), 0);
   auto forEachEntry = [&](vtkIdType chunk, auto&& visit)
   {
-    const vtkIdType end = std::min(kept, (chunk + 1) * chunkSize);
-    for (vtkIdType r = chunk * chunkSize; r < end; ++r)
+    const vtkIdType end = std::min(n, (chunk + 1) * chunkSize);
+    for (vtkIdType i = chunk * chunkSize; i < end; ++i)
     {
-      const ScreenSplat& s = internal.Sorted[r];
+      if (internal.Skips[i] != splat::CaptureSkip::Kept)
+      {
+        continue;
+      }
+      const ScreenSplat& s = internal.Splats[i];
       for (int ty = s.Y0 / TileSize; ty <= s.Y1 / TileSize; ++ty)
       {
         for (int tx = s.X0 / TileSize; tx <= s.X1 / TileSize; ++tx)
         {
-          visit(r, static_cast<vtkIdType>(ty) * tilesX + tx);
+          visit(i, static_cast<vtkIdType>(ty) * tilesX + tx);
         }
       }
     }
@@ -341,23 +309,26 @@ void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels&
       {
         std::size_t* place = places.data() + c * tiles;
         forEachEntry(c,
-          [&](vtkIdType r, vtkIdType tile)
-          { internal.TileEntries[place[tile]++] = static_cast<std::uint32_t>(r); });
+          [&](vtkIdType i, vtkIdType tile)
+          { internal.TileEntries[place[tile]++] = TileEntry(internal.Splats[i].Depth, i); });
       }
     });
 
-  // 4. The tiles, front to back.
+  // 3. The tiles, each sorted by depth, then front to back.
   vtkSMPTools::For(0, tiles,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType tile = begin; tile < end; ++tile)
       {
-        const std::size_t first = internal.TileOffsets[tile];
-        CompositeTile(internal.Sorted.data(), internal.TileEntries.data() + first,
-          internal.TileOffsets[tile + 1] - first, static_cast<int>(tile % tilesX) * TileSize,
+        std::uint64_t* first = internal.TileEntries.data() + internal.TileOffsets[tile];
+        std::uint64_t* last = internal.TileEntries.data() + internal.TileOffsets[tile + 1];
+        std::sort(first, last);
+        CompositeTile(internal.Splats.data(), first, last - first,
+          static_cast<int>(tile % tilesX) * TileSize,
           static_cast<int>(tile / tilesX) * TileSize, width, height, sceneDepths, image.data());
       }
     });
+
 }
 
 //------------------------------------------------------------------------------

@@ -10,13 +10,12 @@
  * order of the centers' eye depths, each pixel stopping before the kernel that would take its
  * transmittance below 1e-4.
  *
- * A frame has four steps, as in the reference: the footprints, in parallel over kernels; one
- * stable radix sort of the kept kernels by depth, and their footprints copied in that order;
- * the sorted kernels binned into 16 x 16 pixel tiles (a counting sort in parallel over fixed
- * chunks, so that every tile's list keeps the depth order whatever the number of threads); and
- * the tiles composited in parallel, each front to back over its list, eight pixels of a row at a
- * time, until none of its pixels integrates any more. The image does not depend on the number
- * of threads.
+ * A frame has three steps, as in the reference: the footprints, in parallel over kernels; the
+ * kept kernels binned into 16 x 16 pixel tiles (a counting sort in parallel over fixed chunks),
+ * each entry its kernel's depth and id in one 64-bit key; and the tiles in parallel, each list
+ * sorted (by depth, ties by id, the order of a stable sort) and composited front to back, eight
+ * pixels of a row at a time, until none of the tile's pixels integrates any more. The image
+ * does not depend on the number of threads.
  *
  * vtkVolumeSplatRasterizer, the CPU backend of vtkVolumeSplatMapper, hands its captures here in
  * the DEPTH_SORTED ordering (the mapper's default for them).
