@@ -4,6 +4,7 @@
 // by EWA volume splatting, into a PNG and reports the frame time. Without a file it renders the
 // project's demo scenes.
 // Run `splat_render --help` for the options.
+#include "SplatCaptureCameras.h"
 #include "SplatExampleUtilities.h"
 #include "SplatFileReaders.h"
 #include "SplatRenderOptions.h"
@@ -125,7 +126,8 @@ void SetUpCamera(
 vtkSmartPointer<vtkRenderWindow> MakeWindow(const Options& options)
 {
   vtkSmartPointer<vtkRenderWindow> window = splatexample::MakeOffscreenWindow();
-  window->GetRenderers()->GetFirstRenderer()->SetBackground(options.Background.data());
+  const Triple background = options.Background.value_or(Triple{ 0.1, 0.1, 0.15 });
+  window->GetRenderers()->GetFirstRenderer()->SetBackground(background.data());
   window->SetSize(options.Width, options.Height);
   return window;
 }
@@ -305,6 +307,28 @@ vtkSmartPointer<vtkVolumeProperty> RangeProperty(vtkDataArray* scalars, double u
   return property;
 }
 
+// The training cameras of the capture options.Input: --cameras, else a cameras.json beside the
+// file or one folder up (the INRIA layout keeps the point cloud in
+// point_cloud/iteration_N/); empty when there is none.
+std::string TrainingCameras(const Options& options)
+{
+  if (!options.Cameras.empty())
+  {
+    return options.Cameras;
+  }
+  std::string folder = vtksys::SystemTools::GetFilenamePath(options.Input);
+  for (int up = 0; up < 3; ++up)
+  {
+    const std::string candidate = (folder.empty() ? std::string(".") : folder) + "/cameras.json";
+    if (vtksys::SystemTools::FileExists(candidate, true))
+    {
+      return candidate;
+    }
+    folder = vtksys::SystemTools::GetFilenamePath(folder);
+  }
+  return "";
+}
+
 // SetUpCamera fitted to the bulk of `points`, from the 2nd to the 98th percentile along each
 // axis: captures hold sparse background Gaussians far out, which would leave the scene a dot.
 void PlaceOnBulk(vtkRenderer* renderer, vtkPointSet* points, const Options& options)
@@ -347,6 +371,7 @@ void RenderVolumeScene(vtkRenderWindow* window, vtkDataSet* kernels, vtkVolumePr
   splatexample::MakeFolder(vtksys::SystemTools::GetFilenamePath(png));
   vtkSmartPointer<vtkVolumeSplatMapper> mapper = splatexample::VolumeSplat(
     kernels, options.Backend, options.Ordering, options.Cutoff.value_or(0.0));
+  mapper->SetFootprintFilter(options.FootprintFilter);
   const bool voxels = vtkImageData::SafeDownCast(kernels) != nullptr;
   if (voxels)
   {
@@ -376,7 +401,7 @@ void RenderVolumeScene(vtkRenderWindow* window, vtkDataSet* kernels, vtkVolumePr
   std::cout << "  kernels:       " << count << " (" << mapper->GetNumberOfTransparentKernels()
             << " transparent " << (voxels ? "voxels" : "kernels") << " left out, "
             << mapper->GetNumberOfInvalidKernels()
-            << " invalid; " << splatexample::OrderingModeName(options.Ordering)
+            << " invalid; " << splatexample::OrderingModeName(mapper->GetLastOrderingMode())
             << " ordering, lists";
   for (int list = 0; list < 4; ++list)
   {
@@ -560,12 +585,38 @@ int RenderFile(const Options& options)
               << capture.Kernels->GetNumberOfPoints() << " Gaussians, SH degree "
               << capture.Degree << ", drawn by vtkVolumeSplatMapper" << std::endl;
     // Unshaded: the captured colors hold the lighting. The kernels' own colors and opacities
-    // are drawn (the mapper's Color and Opacity arrays), not transfer functions.
+    // are drawn (the mapper's Color and Opacity arrays), not transfer functions. On black, as
+    // captures are trained, from a training camera where there is one.
     vtkNew<vtkVolumeProperty> property;
     property->ShadeOff();
-    RenderVolumeScene(MakeWindow(options), capture.Kernels, property, options, png,
-      [&options, &capture](vtkRenderer* renderer)
-      { PlaceOnBulk(renderer, capture.Kernels, options); });
+    Options view = options;
+    view.Background = options.Background.value_or(Triple{ 0.0, 0.0, 0.0 });
+    const std::string cameras = TrainingCameras(options);
+    std::optional<splatexample::TrainingCamera> training;
+    if (!cameras.empty())
+    {
+      training = splatexample::ReadTrainingCamera(cameras, options.Camera);
+      std::cout << "  view:          training camera " << options.Camera << " ("
+                << (training->Name.empty() ? "unnamed" : training->Name) << ") of " << cameras
+                << std::endl;
+      if (!options.SizeGiven)
+      {
+        const double scale = std::min(1.0, 800.0 / std::max(training->Width, training->Height));
+        view.Width = std::max(1, static_cast<int>(std::lround(scale * training->Width)));
+        view.Height = std::max(1, static_cast<int>(std::lround(scale * training->Height)));
+      }
+    }
+    RenderVolumeScene(MakeWindow(view), capture.Kernels, property, view, png,
+      [&view, &capture, &training](vtkRenderer* renderer)
+      {
+        if (!training)
+        {
+          PlaceOnBulk(renderer, capture.Kernels, view);
+          return;
+        }
+        training->Apply(renderer->GetActiveCamera());
+        renderer->ResetCameraClippingRange();
+      });
     return EXIT_SUCCESS;
   }
   vtkSmartPointer<vtkPolyData> data = splatexample::ReadMesh(options.Input);

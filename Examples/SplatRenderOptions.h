@@ -68,8 +68,19 @@ Options (a value follows as --name VALUE or --name=VALUE):
   --radius-scale F        vtkSurfelGenerator RadiusScale: splat radius / point spacing (default 1)
   --cutoff F              Cutoff on the kernel exponent (default: the mapper's, 1 for surface
                           splats, 4.5 for volumes)
-  --ordering blended|clipped|single-axis|depth-sorted
-                          volumes: vtkVolumeSplatMapper's visibility ordering (default blended)
+  --ordering auto|blended|clipped|single-axis|depth-sorted
+                          volumes: vtkVolumeSplatMapper's visibility ordering (default auto:
+                          depth-sorted for captures, blended for density volumes)
+  --footprint-filter auto|low-pass|dilation|antialiased
+                          volumes: the screen filter of the footprints (default auto: the
+                          0.3 px^2 dilation captures are trained with, EWA's 1 px^2 low-pass
+                          for density volumes; antialiased: the dilation with the opacity
+                          compensated, for captures seen far from their training views)
+  --cameras FILE          captures: the training cameras (INRIA cameras.json; default the
+                          cameras.json beside the capture or up to two folders up): the
+                          view is camera --camera's, the size its aspect at most 800 pixels
+                          wide unless --size is given
+  --camera N              captures: the training camera to view from (default 0)
   --shade on|off          volumes: light the kernels by the scalar gradient (default on)
   --grid NAME             .vdb files: the grid to draw (default the first one supported)
   --texture IMAGE         meshes with texture coordinates (PLY u,v or s,t; OBJ vt): acquire the
@@ -79,7 +90,8 @@ Options (a value follows as --name VALUE or --name=VALUE):
                           how --texture is acquired: point sampling, view-independent EWA
                           prefilter (default) or the optimal least-squares fit
   --color r,g,b           splat color in [0,1], replaces the data's own colors
-  --background r,g,b      background color in [0,1] (default 0.1,0.1,0.15)
+  --background r,g,b      background color in [0,1] (default 0.1,0.1,0.15; black for
+                          captures, as they are trained)
   --frames N              frames timed after one warm-up frame (default 5)
   --help                  print this help
 
@@ -101,7 +113,11 @@ struct Options
   std::optional<Triple> ViewDirection;
   double RadiusScale = 1.0;
   std::optional<double> Cutoff;
-  int Ordering = vtkVolumeSplatMapper::BLENDED;
+  int Ordering = vtkVolumeSplatMapper::AUTOMATIC;
+  int FootprintFilter = vtkVolumeSplatMapper::AUTOMATIC_FILTER;
+  std::string Cameras; // a capture's training cameras; empty: cameras.json beside it, if any
+  int Camera = 0;
+  bool SizeGiven = false;
   bool Shade = true;
   std::string Grid; // of a .vdb file; empty: the reader's default
   int Backend = vtkSplatBackend::AUTO;
@@ -109,7 +125,7 @@ struct Options
   std::optional<Triple> Color;
   std::string Texture; // image acquired onto the surfels; empty: none
   int Acquisition = vtkSurfelTextureAcquisition::VIEW_INDEPENDENT_EWA;
-  Triple Background = { 0.1, 0.1, 0.15 };
+  std::optional<Triple> Background; // unset: splatexample's default, black for captures
   int Frames = 5;
 };
 
@@ -228,6 +244,7 @@ inline Options ParseCommandLine(int argc, char* argv[])
         }
         options.Width = ParseCount(name, value.substr(0, x), 1, 16384);
         options.Height = ParseCount(name, value.substr(x + 1), 1, 16384);
+        options.SizeGiven = true;
       } },
     { "--azimuth",
       [&](const std::string& name, const std::string& value)
@@ -269,11 +286,25 @@ inline Options ParseCommandLine(int argc, char* argv[])
       [&](const std::string& name, const std::string& value)
       {
         options.Ordering = ParseChoice(name, value,
-          { { "blended", vtkVolumeSplatMapper::BLENDED },
+          { { "auto", vtkVolumeSplatMapper::AUTOMATIC },
+            { "blended", vtkVolumeSplatMapper::BLENDED },
             { "clipped", vtkVolumeSplatMapper::CLIPPED },
             { "single-axis", vtkVolumeSplatMapper::SINGLE_AXIS },
             { "depth-sorted", vtkVolumeSplatMapper::DEPTH_SORTED } });
       } },
+    { "--footprint-filter",
+      [&](const std::string& name, const std::string& value)
+      {
+        options.FootprintFilter = ParseChoice(name, value,
+          { { "auto", vtkVolumeSplatMapper::AUTOMATIC_FILTER },
+            { "low-pass", vtkVolumeSplatMapper::LOW_PASS_FILTER },
+            { "dilation", vtkVolumeSplatMapper::DILATION_FILTER },
+            { "antialiased", vtkVolumeSplatMapper::ANTIALIASED_FILTER } });
+      } },
+    { "--cameras", [&](const std::string&, const std::string& value) { options.Cameras = value; } },
+    { "--camera",
+      [&](const std::string& name, const std::string& value)
+      { options.Camera = ParseCount(name, value, 0, 1 << 20); } },
     { "--shade",
       [&](const std::string& name, const std::string& value)
       { options.Shade = ParseChoice(name, value, { { "on", 1 }, { "off", 0 } }) != 0; } },

@@ -87,6 +87,8 @@ inline const char* OrderingModeName(int mode)
       return "single-axis";
     case vtkVolumeSplatMapper::DEPTH_SORTED:
       return "depth-sorted";
+    case vtkVolumeSplatMapper::AUTOMATIC:
+      return "auto";
     default:
       return "?";
   }
