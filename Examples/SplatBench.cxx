@@ -139,9 +139,11 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
                        surfaces, cpu for the volumes, whose OpenGL rows are slow under llvmpipe;
                        a list given here applies to both)
   --orderings LIST     vtkVolumeSplatMapper's ordering modes: blended, clipped, single-axis,
-                       depth-sorted, and blended-exact (CPU only: blended with image data's
-                       voxels splatted one by one on the screen, SheetResampling off)
-                       (default all)
+                       depth-sorted, blended-exact (CPU only: blended with image data's
+                       voxels splatted one by one on the screen, SheetResampling off), and
+                       for 3dgs depth-sorted-antialiased and depth-sorted-low-pass (the
+                       other footprint filters; every other row of a capture has the
+                       dilation it was trained with) (default all)
   --frames N           at most N timed frames per case (default 10)
   --budget SECONDS     time a case's frames within this many seconds: after the first timed
                        frame, another is timed only while the elapsed time plus the last
@@ -222,7 +224,8 @@ Options ParseCommandLine(int argc, char* argv[])
       [&](const std::string& name, const std::string& value) {
         options.Orderings =
           SplitList(name, value,
-            { "blended", "clipped", "single-axis", "depth-sorted", "blended-exact" });
+            { "blended", "clipped", "single-axis", "depth-sorted", "blended-exact",
+              "depth-sorted-antialiased", "depth-sorted-low-pass" });
       } },
     { "--frames", CountInto(options.Frames, 1, 100000) },
     { "--budget", CountInto(options.Budget, 0, 86400) },
@@ -334,8 +337,9 @@ std::vector<MapperKind> Kinds(const Options& options)
 }
 
 // Cases per size of a volume scene: vtkVolumeSplatMapper in every ordering mode on each
-// backend, then the ray casters (the first, vtkFixedPointVolumeRayCastMapper, is the peer).
-std::vector<MapperKind> VolumeKinds(const Options& options)
+// backend (for a capture also its depth order with the antialiased and low-pass filters), then
+// the ray casters (the first, vtkFixedPointVolumeRayCastMapper, is the peer).
+std::vector<MapperKind> VolumeKinds(const Options& options, bool capture)
 {
   std::vector<MapperKind> kinds;
   if (Chosen(options.Mappers, "splat"))
@@ -352,6 +356,22 @@ std::vector<MapperKind> VolumeKinds(const Options& options)
           vtkSplatBackend::GetBackendAsString(backend), splatexample::OrderingModeName(mode) };
         kind.SplatBackend = backend;
         kind.Ordering = mode;
+        kinds.push_back(kind);
+      }
+      for (const int filter :
+        { vtkVolumeSplatMapper::ANTIALIASED_FILTER, vtkVolumeSplatMapper::LOW_PASS_FILTER })
+      {
+        const std::string setting = std::string("depth-sorted-") +
+          (filter == vtkVolumeSplatMapper::LOW_PASS_FILTER ? "low-pass" : "antialiased");
+        if (!capture || !Chosen(options.Orderings, setting))
+        {
+          continue;
+        }
+        MapperKind kind{ "splat", "vtkVolumeSplatMapper",
+          vtkSplatBackend::GetBackendAsString(backend), setting };
+        kind.SplatBackend = backend;
+        kind.Ordering = vtkVolumeSplatMapper::DEPTH_SORTED;
+        kind.FootprintFilter = filter;
         kinds.push_back(kind);
       }
       // The CPU's default ordering without the sheets: every voxel splatted on the screen.
@@ -384,7 +404,8 @@ std::vector<MapperKind> SceneKinds(const std::string& scene, const Options& opti
   const bool surface = scene == "sphere" || scene == "bunny";
   const bool grid = scene != "3dgs";
   const bool gpuGrid = scene == "mri" || scene == "vdb";
-  std::vector<MapperKind> kinds = surface ? Kinds(options) : VolumeKinds(options);
+  std::vector<MapperKind> kinds =
+    surface ? Kinds(options) : VolumeKinds(options, scene == "3dgs");
   const auto drawn = [&](const MapperKind& kind)
   {
     return surface ? !kind.ClosedOnly || scene == "sphere"
@@ -464,8 +485,10 @@ Scene VolumeScene(const std::string& name, vtkDataSet* kernels, vtkVolumePropert
     vtkNew<vtkVolume> volume;
     if (kind.Name == "splat")
     {
-      volume->SetMapper(splatexample::VolumeSplat(
-        data, kind.SplatBackend, kind.Ordering, 0.0, !kind.ExactKernels));
+      vtkSmartPointer<vtkVolumeSplatMapper> mapper = splatexample::VolumeSplat(
+        data, kind.SplatBackend, kind.Ordering, 0.0, !kind.ExactKernels);
+      mapper->SetFootprintFilter(kind.FootprintFilter);
+      volume->SetMapper(mapper);
       volume->SetProperty(splatProperty);
       return Stage{ volume.Get(), data };
     }

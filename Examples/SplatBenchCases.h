@@ -51,7 +51,7 @@ struct Options
   std::vector<std::string> Backends = { "cpu", "opengl" };
   std::vector<std::string> VolumeBackends = { "cpu" }; // --backends sets both
   std::vector<std::string> Orderings = { "blended", "clipped", "single-axis", "depth-sorted",
-    "blended-exact" };
+    "blended-exact", "depth-sorted-antialiased", "depth-sorted-low-pass" };
   int Frames = 10;
   double Budget = 10.0;
   std::string Output = "output/bench/bench.csv";
@@ -70,6 +70,7 @@ struct MapperKind
   int SplatBackend = vtkSplatBackend::AUTO; // the splat mappers' SetBackend
   int FilterMode = vtkSurfaceSplatMapper::EWA;
   int Ordering = vtkVolumeSplatMapper::BLENDED; // vtkVolumeSplatMapper's SetOrderingMode
+  int FootprintFilter = vtkVolumeSplatMapper::AUTOMATIC_FILTER; // and its SetFootprintFilter
   bool ExactKernels = false; // vtkSurfaceSplatMapper's SetMinifiedVariance(0), and
                              // vtkVolumeSplatMapper's SetSheetResampling(false)
   bool LevelOfDetail = true; // vtkSurfaceSplatMapper's SetLevelOfDetail
