@@ -11,7 +11,7 @@ Checks that
   properties and the object's getters), and whose render statistics (LastBackend included) are
   exposed; a missing property fails;
 - mappers/VolumeSplatMapper creates a vtkVolumeSplatMapper (a vtkAbstractVolumeMapper) whose
-  settings (OrderingMode, BlendThreshold, Cutoff, Backend, CovarianceArrayName, ScaleArrayName,
+  settings (OrderingMode, FootprintFilter, BlendThreshold, Cutoff, Backend, CovarianceArrayName, ScaleArrayName,
   RotationArrayName, ColorArrayName, OpacityArrayName, SphericalHarmonicsArrayName,
   MaximumSphericalHarmonicsDegree) have their defaults and round-trip the
   same way, with their enumerations and ranges, and whose render statistics (LastBackend,
@@ -211,7 +211,8 @@ def test_volume_mapper(servermanager):
 
     mapper = servermanager._getPyProxy(smproxy)
 
-    settings = ["OrderingMode", "BlendThreshold", "Cutoff", "Backend", "CovarianceArrayName",
+    settings = ["OrderingMode", "FootprintFilter", "BlendThreshold", "Cutoff", "Backend",
+                "CovarianceArrayName",
                 "ScaleArrayName", "RotationArrayName", "ColorArrayName", "OpacityArrayName",
                 "SphericalHarmonicsArrayName", "MaximumSphericalHarmonicsDegree"]
     counts = ["NumberOfKernels", "NumberOfTransparentKernels", "NumberOfInvalidKernels",
@@ -237,17 +238,21 @@ def test_volume_mapper(servermanager):
     # Defaults, as the VTK object reports them after the XML's defaults are pushed.
     smproxy.UpdateVTKObjects()
     expected_entries = {
-        "OrderingMode": {"Blended": 0, "Clipped": 1, "SingleAxis": 2, "DepthSorted": 3},
+        "OrderingMode": {"Automatic": 4, "Blended": 0, "Clipped": 1, "SingleAxis": 2,
+                         "DepthSorted": 3},
+        "FootprintFilter": {"Automatic": 3, "LowPass": 0, "Dilation": 1, "Antialiased": 2},
         "Backend": {"Auto": 0, "CPU": 1, "OpenGL": 2},
     }
     check_defaults_and_enumerations(
         smproxy, mapper, "volume ",
-        {"OrderingMode": 0, "BlendThreshold": 0.85, "Cutoff": 4.5, "Backend": 0,
+        {"OrderingMode": 4, "FootprintFilter": 3, "BlendThreshold": 0.85, "Cutoff": 4.5,
+         "Backend": 0,
          "CovarianceArrayName": "Covariance", "ScaleArrayName": "Scale",
          "RotationArrayName": "Rotation", "ColorArrayName": "Color",
          "OpacityArrayName": "Opacity", "SphericalHarmonicsArrayName": "SphericalHarmonics",
          "MaximumSphericalHarmonicsDegree": 3},
-        expected_entries, {"OrderingMode": "Blended", "Backend": "Auto"})
+        expected_entries, {"OrderingMode": "Automatic", "FootprintFilter": "Automatic",
+                           "Backend": "Auto"})
     check_domain_range(smproxy, "BlendThreshold", "vtkSMDoubleRangeDomain", 0.0, 0.99)
     check_domain_range(smproxy, "Cutoff", "vtkSMDoubleRangeDomain", 0.001, 50.0)
     check_domain_range(smproxy, "MaximumSphericalHarmonicsDegree", "vtkSMIntRangeDomain", 0, 3)
@@ -260,9 +265,11 @@ def test_volume_mapper(servermanager):
     for name, value in list(values.items()) + list(strings.items()):
         setattr(mapper, name, value)
     mapper.OrderingMode = "Clipped"
+    mapper.FootprintFilter = "Antialiased"
     mapper.Backend = "OpenGL"
     smproxy.UpdateVTKObjects()
     values["OrderingMode"] = 1
+    values["FootprintFilter"] = 2
     values["Backend"] = 2
     for name, value in values.items():
         got = info_value(smproxy, name + "Info")

@@ -26,7 +26,8 @@ NAME = "TestVolumeSplatRepresentation"
 # Settings exposed on the representation: the default, another value, the mapper's information
 # property that reads it back, and the value read back.
 MAPPER_SETTINGS = [
-    ("VolumeSplatOrderingMode", "Blended", "Clipped", "OrderingModeInfo", 1),
+    ("VolumeSplatOrderingMode", "Automatic", "Clipped", "OrderingModeInfo", 1),
+    ("VolumeSplatFootprintFilter", "Automatic", "Antialiased", "FootprintFilterInfo", 2),
     ("VolumeSplatBlendThreshold", 0.85, 0.7, "BlendThresholdInfo", 0.7),
     ("VolumeSplatCutoff", 4.5, 3.0, "CutoffInfo", 3.0),
     ("VolumeSplatCovarianceArrayName", "Covariance", "C", "CovarianceArrayNameInfo", "C"),
