@@ -24,6 +24,7 @@
 #include "SplatCheckerboardScene.h"
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
+#include "SplatReportCaptures.h"
 #include "SplatReportCases.h"
 #include "SplatReportImages.h"
 #include "SplatReportDifferentialPoints.h"
@@ -118,6 +119,10 @@ variance), offscreen, and measures each image against a reference:
                 mappers on each backend: NaN/Inf values, skipped kernels and why, errors,
                 ms per frame against the scene without the extreme, RMSE against a reference
                 where one exists; stability.csv, stability.md (SplatReportStability.h)
+  captures      3D Gaussian Splatting captures (the generated torus, and the shared data's
+                real captures when present) in every ordering mode and footprint filter
+                against the rules they were trained under; captures.csv, captures.md
+                (SplatReportCaptures.h)
 The volume scenes (--volume-size pixels square, black background) are drawn by
 vtkVolumeSplatMapper in every ordering mode (blended is the default), with cutoffs 2 and 8 (the
 default 4.5 aside), and by vtkFixedPointVolumeRayCastMapper (a sample every voxel spacing and
@@ -189,7 +194,7 @@ Options ParseCommandLine(int argc, char* argv[])
       [&](const std::string& name, const std::string& value) {
         options.Scenes = splatexample::SplitList(
           name, value, { "checkerboard", "textured-plane", "bunny", "mri", "gaussians", "vdb",
-                         "stability" });
+                         "stability", "captures" });
       } },
     { "--backends",
       [&](const std::string& name, const std::string& value) {
@@ -620,6 +625,10 @@ int Run(const Options& options)
   {
     md << MeasureStability(options);
   }
+  if (wants("captures"))
+  {
+    md << MeasureCaptures(options);
+  }
 
   if (wants("bunny"))
   {
@@ -802,7 +811,7 @@ int Run(const Options& options)
        << "direction matrix).\n\n"
        << MarkdownTable(result.Rows, "Gaussian-filtered reference") << "\n";
   }
-  if (rows.empty() && !wants("textured-plane") && !wants("stability"))
+  if (rows.empty() && !wants("textured-plane") && !wants("stability") && !wants("captures"))
   {
     throw std::runtime_error("no scene was measured");
   }
@@ -831,7 +840,7 @@ int Run(const Options& options)
       throw std::runtime_error("cannot write '" + mdPath + "'");
     }
   }
-  if (!scenes.empty()) // textured-plane and stability have their own tables and CSVs only
+  if (!scenes.empty()) // textured-plane, stability and captures have their own tables only
   {
     WritePlot(scenes, rows, pngPath);
   }

@@ -37,12 +37,17 @@
 
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
+#include "vtkGaussianSplatReader.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
+#include "vtkSmartPointer.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <string>
 #include <numeric>
 #include <vector>
 
@@ -296,6 +301,74 @@ inline std::vector<double> RenderReference(vtkPointSet* capture, const Reference
     value = std::min(value, 1.0);
   }
   return rgb;
+}
+
+/// A camera looking at a capture.
+struct CaptureView
+{
+  std::string Name;
+  std::array<double, 3> Position, FocalPoint, Up;
+};
+
+/// Views of a capture centered at c with a typical radius r: around it, close, and from inside.
+inline std::vector<CaptureView> CaptureViews(const std::array<double, 3>& c, double r)
+{
+  auto at = [&c](double x, double y, double z)
+  { return std::array<double, 3>{ c[0] + x, c[1] + y, c[2] + z }; };
+  return { { "front", at(0.4 * r, -3.0 * r, 1.5 * r), c, { 0, 0, 1 } },
+    { "side", at(3.2 * r, 0.6 * r, -0.4 * r), c, { 0, 1, 0 } },
+    { "close", at(-1.2 * r, 0.5 * r, 0.9 * r), at(-0.3 * r, 0.1 * r, 0.0), { 0, 0, 1 } },
+    { "inside", at(0.05 * r, 0.02 * r, 0.0), at(r, 0.3 * r, 0.1 * r), { 0, 0, 1 } },
+    { "inside-back", at(-0.1 * r, 0.0, 0.05 * r), at(-r, -0.5 * r, -0.2 * r), { 0, 1, 0 } } };
+}
+
+/// The capture's robust center and radius: the median position, the median distance from it
+/// (real captures carry far floaters that the bounds would frame).
+inline void RobustFrame(vtkPointSet* data, std::array<double, 3>& center, double& radius)
+{
+  const vtkIdType n = data->GetNumberOfPoints();
+  std::vector<double> values(n);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      values[i] = data->GetPoint(i)[axis];
+    }
+    std::nth_element(values.begin(), values.begin() + n / 2, values.end());
+    center[axis] = values[n / 2];
+  }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const double* p = data->GetPoint(i);
+    values[i] = std::sqrt((p[0] - center[0]) * (p[0] - center[0]) +
+      (p[1] - center[1]) * (p[1] - center[1]) + (p[2] - center[2]) * (p[2] - center[2]));
+  }
+  std::nth_element(values.begin(), values.begin() + n / 2, values.end());
+  radius = values[n / 2];
+}
+
+/// A capture with the views the tests and the report draw it from.
+struct CaptureScene
+{
+  std::string Name;
+  vtkSmartPointer<vtkPointSet> Data;
+  int Degree;
+  std::vector<CaptureView> Views;
+};
+
+/// The capture file at `path` (vtkGaussianSplatReader), viewed around its robust frame.
+inline CaptureScene ReadCapture(const std::string& path)
+{
+  vtkNew<vtkGaussianSplatReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  CaptureScene capture{ vtksys::SystemTools::GetFilenameName(path), reader->GetOutput(),
+    reader->GetSphericalHarmonicsDegree(), {} };
+  std::array<double, 3> center;
+  double radius;
+  RobustFrame(capture.Data, center, radius);
+  capture.Views = CaptureViews(center, radius);
+  return capture;
 }
 
 /// Peak signal-to-noise ratio of two RGB images in [0, 1], in dB.

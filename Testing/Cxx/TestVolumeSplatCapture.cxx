@@ -20,7 +20,6 @@
 #include "SplatCaptureScene.h"
 #include "SplatTestUtilities.h"
 #include "SplatVolumeTestUtilities.h"
-#include "vtkGaussianSplatReader.h"
 #include "vtkSplatBackend.h"
 #include "vtkVolumeSplatMapper.h"
 
@@ -54,57 +53,6 @@ void Check(bool ok, const std::string& what)
   }
 }
 
-struct View
-{
-  std::string Name;
-  std::array<double, 3> Position, FocalPoint, Up;
-};
-
-struct Capture
-{
-  std::string Name;
-  vtkSmartPointer<vtkPointSet> Data;
-  int Degree;
-  std::vector<View> Views;
-};
-
-// Views of a capture centered at c with a typical radius r: around it, close, and from inside.
-std::vector<View> ViewsAround(const std::array<double, 3>& c, double r)
-{
-  auto at = [&c](double x, double y, double z)
-  { return std::array<double, 3>{ c[0] + x, c[1] + y, c[2] + z }; };
-  return { { "front", at(0.4 * r, -3.0 * r, 1.5 * r), c, { 0, 0, 1 } },
-    { "side", at(3.2 * r, 0.6 * r, -0.4 * r), c, { 0, 1, 0 } },
-    { "close", at(-1.2 * r, 0.5 * r, 0.9 * r), at(-0.3 * r, 0.1 * r, 0.0), { 0, 0, 1 } },
-    { "inside", at(0.05 * r, 0.02 * r, 0.0), at(r, 0.3 * r, 0.1 * r), { 0, 0, 1 } },
-    { "inside-back", at(-0.1 * r, 0.0, 0.05 * r), at(-r, -0.5 * r, -0.2 * r), { 0, 1, 0 } } };
-}
-
-// The capture's robust center and radius: the median position, the median distance from it
-// (real captures carry far floaters that the bounds would frame).
-void RobustFrame(vtkPointSet* data, std::array<double, 3>& center, double& radius)
-{
-  const vtkIdType n = data->GetNumberOfPoints();
-  std::vector<double> values(n);
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      values[i] = data->GetPoint(i)[axis];
-    }
-    std::nth_element(values.begin(), values.begin() + n / 2, values.end());
-    center[axis] = values[n / 2];
-  }
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const double* p = data->GetPoint(i);
-    values[i] = std::sqrt((p[0] - center[0]) * (p[0] - center[0]) +
-      (p[1] - center[1]) * (p[1] - center[1]) + (p[2] - center[2]) * (p[2] - center[2]));
-  }
-  std::nth_element(values.begin(), values.begin() + n / 2, values.end());
-  radius = values[n / 2];
-}
-
 struct Rendered
 {
   std::vector<double> RGB;
@@ -113,7 +61,7 @@ struct Rendered
 
 // The capture drawn by the mapper (CPU backend unless another is given) from the view; the
 // reference camera of the render (its clipping range is the one the mapper used).
-Rendered Draw(vtkVolumeSplatMapper* mapper, vtkPointSet* data, const View& view,
+Rendered Draw(vtkVolumeSplatMapper* mapper, vtkPointSet* data, const splattest::CaptureView& view,
   int backend = vtkSplatBackend::CPU)
 {
   auto window = splattest::MakeRenderWindow(Size, Size);
@@ -136,9 +84,9 @@ Rendered Draw(vtkVolumeSplatMapper* mapper, vtkPointSet* data, const View& view,
   return out;
 }
 
-void TestCapture(const Capture& capture)
+void TestCapture(const splattest::CaptureScene& capture)
 {
-  for (const View& view : capture.Views)
+  for (const splattest::CaptureView& view : capture.Views)
   {
     const std::string where = capture.Name + " " + view.Name;
     vtkNew<vtkVolumeSplatMapper> mapper;
@@ -220,7 +168,7 @@ void TestDensityDefaults()
 
 int main(int argc, char* argv[])
 {
-  std::vector<Capture> captures;
+  std::vector<splattest::CaptureScene> captures;
   if (splattest::HasFlag(argc, argv, "--real"))
   {
     const std::string data = splattest::Argument(argc, argv, "-D");
@@ -232,24 +180,16 @@ int main(int argc, char* argv[])
         std::printf("%s is absent: skipped\n", path.c_str());
         return splattest::SkipReturnCode;
       }
-      vtkNew<vtkGaussianSplatReader> reader;
-      reader->SetFileName(path.c_str());
-      reader->Update();
-      Capture capture{ file, reader->GetOutput(), reader->GetSphericalHarmonicsDegree(), {} };
-      std::array<double, 3> center;
-      double radius;
-      RobustFrame(capture.Data, center, radius);
-      capture.Views = ViewsAround(center, radius);
-      captures.push_back(capture);
+      captures.push_back(splattest::ReadCapture(path));
     }
   }
   else
   {
-    captures.push_back(
-      { "torus", splatexample::SyntheticCapture(20000, 3), 3, ViewsAround({ 0, 0, 0 }, 0.8) });
+    captures.push_back({ "torus", splatexample::SyntheticCapture(20000, 3), 3,
+      splattest::CaptureViews({ 0, 0, 0 }, 0.8) });
     TestDensityDefaults();
   }
-  for (const Capture& capture : captures)
+  for (const splattest::CaptureScene& capture : captures)
   {
     TestCapture(capture);
   }
