@@ -16,6 +16,7 @@
 #include "SplatCaptureScene.h"
 #include "SplatExampleUtilities.h"
 #include "SplatReportCases.h"
+#include "SplatVolumeTestUtilities.h"
 #include "vtkSplatBackend.h"
 #include "vtkVolumeSplatMapper.h"
 
@@ -24,7 +25,6 @@
 #include "vtkRenderer.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
 #include <fstream>
@@ -53,25 +53,6 @@ inline std::vector<CaptureSetting> CaptureSettings()
     { "blended", M::BLENDED, M::AUTOMATIC_FILTER },
     { "clipped", M::CLIPPED, M::AUTOMATIC_FILTER },
     { "single-axis", M::SINGLE_AXIS, M::AUTOMATIC_FILTER } };
-}
-
-// The window's RGB in [0, 1], rows from the bottom.
-inline std::vector<double> WindowRGB(vtkRenderWindow* window)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  vtkImageData* image = grab->GetOutput();
-  const int* dims = image->GetDimensions();
-  const auto* data = static_cast<const unsigned char*>(image->GetScalarPointer());
-  std::vector<double> rgb(3 * static_cast<std::size_t>(dims[0]) * dims[1]);
-  for (std::size_t i = 0; i < rgb.size(); ++i)
-  {
-    rgb[i] = data[i] / 255.0;
-  }
-  return rgb;
 }
 
 // Measures the captures on the volume backends of `options`; writes captures.csv and
@@ -144,7 +125,7 @@ inline std::string MeasureCaptures(const Options& options)
             references.push_back(splattest::RenderReference(capture.Data,
               splattest::ReferenceCameraOf(camera, Size, Size), capture.Degree));
           }
-          const double psnr = splattest::PSNR(WindowRGB(window), references[v]);
+          const double psnr = splattest::PSNR(splattest::ToRGB(splattest::Capture(window)), references[v]);
           worst = std::min(worst, psnr);
           sum += psnr;
         }
