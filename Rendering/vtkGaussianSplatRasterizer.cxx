@@ -80,6 +80,7 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
   alignas(32) float green[Pixels] = {};
   alignas(32) float blue[Pixels] = {};
   alignas(32) float scene[Pixels];
+  alignas(32) float alphas[Pixels]; // one kernel's, over its rows in the tile
   std::fill_n(transmittance, Pixels, 1.0f);
   std::fill_n(scene, Pixels, std::numeric_limits<float>::infinity());
   for (int y = 0; sceneDepths && y < rows; ++y)
@@ -124,16 +125,17 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
     const Float8 last(static_cast<float>(xb));
     const float offsetX = static_cast<float>(x0) + 0.5f - s.CenterX;
     const Float8 depth(s.Depth);
+    // First the kernel's alphas over its rows, independent of one another (each an
+    // exponential's chain of dependent steps, which the processor then overlaps), then their
+    // blending under the pixels.
+    const int ga = xa / Lanes;
+    const int gb = xb / Lanes;
     for (int y = ya; y <= yb; ++y)
     {
-      if (!rowOpen[y])
-      {
-        continue;
-      }
       const float dy = static_cast<float>(y0 + y) + 0.5f - s.CenterY;
       const float cross = s.ConicXY * dy;
       const float rowTerm = s.ConicYY * dy * dy;
-      for (int g = xa / Lanes; g <= xb / Lanes; ++g)
+      for (int g = ga; g <= gb; ++g)
       {
         const int p = y * TileSize + g * Lanes;
         const Float8 column = Float8::Iota() + static_cast<float>(g * Lanes);
@@ -144,7 +146,19 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
         alpha = Float8::SelectLess(alpha, minimumAlpha, 0.0f, alpha);
         alpha = Float8::SelectLess(column, first, 0.0f, alpha);
         alpha = Float8::SelectLess(last, column, 0.0f, alpha);
-        alpha = Float8::SelectLess(Float8::Load(scene + p), depth, 0.0f, alpha);
+        Float8::SelectLess(Float8::Load(scene + p), depth, 0.0f, alpha).Store(alphas + p);
+      }
+    }
+    for (int y = ya; y <= yb; ++y)
+    {
+      if (!rowOpen[y])
+      {
+        continue;
+      }
+      for (int g = ga; g <= gb; ++g)
+      {
+        const int p = y * TileSize + g * Lanes;
+        const Float8 alpha = Float8::Load(alphas + p);
         const Float8 t = Float8::Load(transmittance + p);
         const Float8 next = t * (1.0f - alpha);
         // A pixel whose transmittance would fall below the minimum stops before this kernel

@@ -9,7 +9,11 @@
  * low-pass filter (Zwicker et al., EWA Volume Splatting; SplatVolumeKernel.h). Footprints are
  * composited front to back with emission and absorption, in the visibility order of three lists
  * sorted along the X, Y and Z axes (Hofsetz and Max, see vtkVolumeSplatRasterizer and
- * SetOrderingMode).
+ * SetOrderingMode). Kernels with a peak opacity (3D Gaussian Splatting captures) are drawn by
+ * default as the rasterizer they were optimized against draws them: the 0.3 px^2 dilation
+ * instead of the low-pass (SetFootprintFilter) and the exact per-Gaussian depth order
+ * (vtkGaussianSplatRasterizer on the CPU, SplatCaptureKernel.h), the image they were trained to
+ * produce.
  *
  * Inputs:
  * - vtkImageData, scalars on points: one kernel per voxel, centered on the point, with standard
