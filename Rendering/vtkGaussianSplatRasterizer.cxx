@@ -226,6 +226,13 @@ void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels&
 
   // 1. The footprints.
   const vtkIdType n = static_cast<vtkIdType>(input.Count);
+  // Tile entries hold a kernel's id in 32 bits.
+  if (input.Count > std::numeric_limits<std::uint32_t>::max())
+  {
+    vtkErrorMacro(<< input.Count << " kernels: at most " << std::numeric_limits<std::uint32_t>::max()
+                  << " are drawn in one frame.");
+    return;
+  }
   internal.Splats.resize(n);
   internal.Skips.resize(n);
   const glm::dmat3 toEye(camera.ModelToEye);
@@ -241,7 +248,9 @@ void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels&
         const glm::dvec3 e(camera.ModelToEye * glm::dvec4(p[0], p[1], p[2], 1.0));
         splat::CaptureFootprint f;
         internal.Skips[i] = splat::MakeCaptureFootprint(camera.EyeToClip, viewport,
-          nearDistance, e, toEye, splat::SymmetricFromComponents(input.Covariances + 6 * i),
+          nearDistance, e, toEye,
+          input.Covariances ? splat::SymmetricFromComponents(input.Covariances + 6 * i)
+                            : input.SharedCovariance,
           input.Strengths[i], filter, f);
         if (internal.Skips[i] == splat::CaptureSkip::Kept)
         {

@@ -51,7 +51,7 @@ public:
   ///@}
 
   /**
-   * Draws `kernels` (their Strengths the peak opacities; Covariances per kernel) with `colors`
+   * Draws `kernels` (their Strengths the peak opacities) with `colors`
    * (RGB per kernel for this view) into `image`: premultiplied RGBA per pixel, row by row from
    * the bottom, alpha 1 minus the transmittance. sceneDepths, when not null, holds the opaque
    * scene's eye depth per pixel: a kernel whose center lies behind it adds nothing there.
