@@ -16,6 +16,7 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkSplatPLYReader.h"
+#include "SplatCaptureFormats.h"
 #include "vtkStringArray.h"
 
 #include <vtksys/SystemTools.hxx>
@@ -30,29 +31,10 @@ vtkStandardNewMacro(vtkGaussianSplatReader);
 
 namespace
 {
-// The degree-0 real spherical harmonic, 1 / (2 sqrt(pi)).
-constexpr double C0 = 0.28209479177387814;
+using namespace splatcapture;
+
 // Bytes of one .splat record.
 constexpr int SplatRecordSize = 32;
-
-// The vertex properties every 3DGS .ply has, in the groups of the output arrays.
-const char* const RequiredProperties[] = { "x", "y", "z", "f_dc_0", "f_dc_1", "f_dc_2",
-  "opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3" };
-
-bool IsSplatName(const char* fileName)
-{
-  return vtksys::SystemTools::LowerCase(
-           vtksys::SystemTools::GetFilenameLastExtension(fileName)) == ".splat";
-}
-
-vtkSmartPointer<vtkFloatArray> NewArray(const char* name, int components, vtkIdType tuples)
-{
-  auto array = vtkSmartPointer<vtkFloatArray>::New();
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(tuples);
-  return array;
-}
 
 // The values of a one-component array as floats: the array itself when it is float.
 vtkSmartPointer<vtkFloatArray> AsFloat(vtkDataArray* array)
@@ -64,25 +46,6 @@ vtkSmartPointer<vtkFloatArray> AsFloat(vtkDataArray* array)
   auto converted = vtkSmartPointer<vtkFloatArray>::New();
   converted->DeepCopy(array);
   return converted;
-}
-
-// Writes q / |q| (w, x, y, z) to `out`; a zero or non-finite quaternion is passed on as it is,
-// for the mapper to skip and count.
-void Normalize(const float q[4], float* out)
-{
-  const double norm = std::sqrt(static_cast<double>(q[0]) * q[0] +
-    static_cast<double>(q[1]) * q[1] + static_cast<double>(q[2]) * q[2] +
-    static_cast<double>(q[3]) * q[3]);
-  const double scale = norm > 0.0 && std::isfinite(norm) ? 1.0 / norm : 1.0;
-  for (int c = 0; c < 4; ++c)
-  {
-    out[c] = static_cast<float>(q[c] * scale);
-  }
-}
-
-float BaseColor(float dc)
-{
-  return static_cast<float>(std::clamp(0.5 + C0 * dc, 0.0, 1.0));
 }
 
 void ForwardProgress(vtkObject* caller, unsigned long, void* clientData, void*)
@@ -126,18 +89,18 @@ bool vtkGaussianSplatReader::IsGaussianSplatFile(const char* fileName)
   {
     return false;
   }
-  if (IsSplatName(fileName))
+  switch (Identify(fileName))
   {
-    const unsigned long size = vtksys::SystemTools::FileLength(fileName);
-    return size > 0 && size % SplatRecordSize == 0;
+    case Format::Unknown:
+      return false;
+    case Format::Splat:
+    {
+      const unsigned long size = vtksys::SystemTools::FileLength(fileName);
+      return size > 0 && size % SplatRecordSize == 0;
+    }
+    default:
+      return true;
   }
-  vtkNew<vtkStringArray> names;
-  if (!vtkSplatPLYReader::GetVertexPropertyNames(fileName, names))
-  {
-    return false;
-  }
-  return std::all_of(std::begin(RequiredProperties), std::end(RequiredProperties),
-    [&names](const char* name) { return names->LookupValue(name) >= 0; });
 }
 
 //------------------------------------------------------------------------------
@@ -169,10 +132,42 @@ int vtkGaussianSplatReader::RequestData(
   }
   this->UpdateProgress(0.0);
   vtkNew<vtkPolyData> result;
-  bool ok;
+  bool ok = true;
   try
   {
-    ok = IsSplatName(this->FileName) ? this->ReadSplat(result) : this->ReadPLY(result);
+    const std::string name = this->FileName;
+    const splatcapture::Progress progress = [this](double fraction) { this->UpdateProgress(fraction); };
+    switch (Identify(name))
+    {
+      case Format::PLY:
+        ok = this->ReadPLY(result);
+        break;
+      case Format::Splat:
+        ok = this->ReadSplat(result);
+        break;
+      case Format::CompressedPLY:
+        ReadCompressedPLY(name, result, progress);
+        break;
+      case Format::SPZ:
+        ReadSPZ(name, result, progress);
+        break;
+      case Format::SOG:
+        ReadSOG(name, result, progress);
+        break;
+      case Format::GLTF:
+        ReadGLTF(name, result, progress);
+        break;
+      case Format::KSplat:
+        ReadKSplat(name, result, progress);
+        break;
+      default:
+        ok = this->ReadPLY(result); // reports what the file lacks
+    }
+  }
+  catch (const ReadError& error)
+  {
+    this->Fail(error.Code, error.what());
+    ok = false;
   }
   catch (const std::bad_alloc&)
   {
@@ -185,6 +180,10 @@ int vtkGaussianSplatReader::RequestData(
     return 0;
   }
   output->ShallowCopy(result);
+  vtkDataArray* harmonics = output->GetPointData()->GetArray("SphericalHarmonics");
+  this->SphericalHarmonicsDegree =
+    harmonics ? static_cast<int>(std::lround(std::sqrt(harmonics->GetNumberOfComponents() / 3.0))) - 1
+              : 0;
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -216,7 +215,7 @@ bool vtkGaussianSplatReader::ReadPLY(vtkPolyData* output)
   vtkPolyData* vertices = ply->GetOutput();
   vtkPointData* properties = vertices->GetPointData();
   // x, y and z are the points; the other properties are point-data arrays.
-  for (auto name = std::begin(RequiredProperties) + 3; name != std::end(RequiredProperties);
+  for (auto name = std::begin(PLYProperties) + 3; name != std::end(PLYProperties);
        ++name)
   {
     if (!properties->GetArray(*name))
@@ -277,56 +276,33 @@ bool vtkGaussianSplatReader::ReadPLY(vtkPolyData* output)
   }
   const float* logit = column("opacity");
 
-  auto scale = NewArray("Scale", 3, n);
-  auto rotation = NewArray("Rotation", 4, n);
-  auto opacity = NewArray("Opacity", 1, n);
-  auto color = NewArray("Color", 3, n);
+  vtkDataArray* points = vertices->GetPoints()->GetData();
+  Kernels kernels(n, degree);
   const int perChannel = rest / 3;
-  vtkSmartPointer<vtkFloatArray> harmonics =
-    rest ? NewArray("SphericalHarmonics", 3 * (perChannel + 1), n) : nullptr;
   vtkSMPTools::For(0, n,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType i = begin; i < end; ++i)
       {
-        float q[4];
-        for (int c = 0; c < 4; ++c)
+        double p[3];
+        points->GetTuple(i, p);
+        kernels.SetPosition(i, static_cast<float>(p[0]), static_cast<float>(p[1]),
+          static_cast<float>(p[2]));
+        kernels.SetRotation(i, rotations[0][i], rotations[1][i], rotations[2][i], rotations[3][i]);
+        kernels.SetOpacityLogit(i, logit[i]);
+        kernels.SetLogScale(i, scales[0][i], scales[1][i], scales[2][i]);
+        kernels.SetDC(i, dc[0][i], dc[1][i], dc[2][i]);
+        // The file stores f_rest channel-major.
+        for (int c = 0; c < 3 && rest; ++c)
         {
-          q[c] = rotations[c][i];
-        }
-        Normalize(q, rotation->GetPointer(4 * i));
-        opacity->SetValue(i, static_cast<float>(1.0 / (1.0 + std::exp(-logit[i]))));
-        for (int c = 0; c < 3; ++c)
-        {
-          scale->SetValue(3 * i + c, std::exp(scales[c][i]));
-          color->SetValue(3 * i + c, BaseColor(dc[c][i]));
-        }
-        if (harmonics)
-        {
-          // The file stores f_rest channel-major; the output interleaves the channels.
-          float* out = harmonics->GetPointer(3 * (perChannel + 1) * i);
-          for (int c = 0; c < 3; ++c)
+          for (int k = 0; k < perChannel; ++k)
           {
-            out[c] = dc[c][i];
-            for (int k = 0; k < perChannel; ++k)
-            {
-              out[3 * (k + 1) + c] = coefficients[c * perChannel + k][i];
-            }
+            kernels.SetRest(i, k + 1, c, coefficients[c * perChannel + k][i]);
           }
         }
       }
     });
-  output->SetPoints(vertices->GetPoints());
-  vtkPointData* pointData = output->GetPointData();
-  for (vtkFloatArray* array : { scale.Get(), rotation.Get(), opacity.Get(), color.Get() })
-  {
-    pointData->AddArray(array);
-  }
-  if (harmonics)
-  {
-    pointData->AddArray(harmonics);
-  }
-  this->SphericalHarmonicsDegree = degree;
+  kernels.MoveTo(output);
   return true;
 }
 
@@ -349,15 +325,7 @@ bool vtkGaussianSplatReader::ReadSplat(vtkPolyData* output)
   }
   in.seekg(0);
   const vtkIdType n = static_cast<vtkIdType>(size / SplatRecordSize);
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  points->SetNumberOfPoints(n);
-  auto* position = vtkFloatArray::FastDownCast(points->GetData());
-  auto scale = NewArray("Scale", 3, n);
-  auto rotation = NewArray("Rotation", 4, n);
-  auto opacity = NewArray("Opacity", 1, n);
-  auto color = NewArray("Color", 3, n);
-
+  Kernels kernels(n, 0);
   const vtkIdType batch = 1 << 16;
   std::vector<char> records;
   for (vtkIdType first = 0; first < n; first += batch)
@@ -378,30 +346,17 @@ bool vtkGaussianSplatReader::ReadSplat(vtkPolyData* output)
       float values[6];
       std::copy(record, record + sizeof(values), reinterpret_cast<char*>(values));
       vtkByteSwap::Swap4LERange(values, 6);
-      std::copy(values, values + 3, position->GetPointer(3 * i));
-      std::copy(values + 3, values + 6, scale->GetPointer(3 * i));
+      kernels.SetPosition(i, values[0], values[1], values[2]);
+      kernels.SetScale(i, values[3], values[4], values[5]);
       const auto* bytes = reinterpret_cast<const unsigned char*>(record + 24);
-      for (int c = 0; c < 3; ++c)
-      {
-        color->SetValue(3 * i + c, bytes[c] / 255.0f);
-      }
-      opacity->SetValue(i, bytes[3] / 255.0f);
-      float q[4];
-      for (int c = 0; c < 4; ++c)
-      {
-        q[c] = (bytes[4 + c] - 128.0f) / 128.0f;
-      }
-      Normalize(q, rotation->GetPointer(4 * i));
+      kernels.SetColor(i, bytes[0] / 255.0f, bytes[1] / 255.0f, bytes[2] / 255.0f);
+      kernels.SetOpacity(i, bytes[3] / 255.0f);
+      kernels.SetRotation(i, (bytes[4] - 128.0f) / 128.0f, (bytes[5] - 128.0f) / 128.0f,
+        (bytes[6] - 128.0f) / 128.0f, (bytes[7] - 128.0f) / 128.0f);
     }
     this->UpdateProgress(static_cast<double>(first + count) / n);
   }
-  output->SetPoints(points);
-  vtkPointData* pointData = output->GetPointData();
-  for (vtkFloatArray* array : { scale.Get(), rotation.Get(), opacity.Get(), color.Get() })
-  {
-    pointData->AddArray(array);
-  }
-  this->SphericalHarmonicsDegree = 0;
+  kernels.MoveTo(output);
   return true;
 }
 

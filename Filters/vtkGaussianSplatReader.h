@@ -1,31 +1,43 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkGaussianSplatReader
- * @brief   reads 3D Gaussian Splatting captures (.ply, .splat) as kernels for
- *          vtkVolumeSplatMapper
+ * @brief   reads 3D Gaussian Splatting captures (.ply, compressed .ply, .splat, .spz, .sog,
+ *          .ksplat, glTF) as kernels for vtkVolumeSplatMapper
  *
- * vtkGaussianSplatReader reads the two common file layouts of 3D Gaussian Splatting (Kerbl et
- * al. 2023) into a vtkPolyData of points (the Gaussians' centers, no cells) with the point
- * arrays vtkVolumeSplatMapper draws without further set-up:
+ * vtkGaussianSplatReader reads the file formats 3D Gaussian Splatting (Kerbl et al. 2023)
+ * captures ship in into a vtkPolyData of points (the Gaussians' centers, no cells) with the
+ * point arrays vtkVolumeSplatMapper draws without further set-up:
  * - "Scale", 3 floats: the standard deviations along the Gaussian's axes;
  * - "Rotation", 4 floats: the unit quaternion (w, x, y, z) turning the axes into place;
  * - "Opacity", 1 float: the peak opacity of the 3DGS model, alpha(x) = opacity exp(-beta(x));
  * - "Color", 3 floats in [0, 1]: the view-independent base color, 0.5 + C0 f_dc clamped,
  *   C0 = 0.28209479177387814 the degree-0 spherical harmonic;
- * - "SphericalHarmonics" (.ply files with f_rest properties only), 3 (d + 1)^2 floats for
- *   degree d from 1 to 3: every coefficient including the DC term, coefficient-major with the
- *   channels interleaved, [k0.r, k0.g, k0.b, k1.r, k1.g, k1.b, ...].
+ * - "SphericalHarmonics" (files with higher degrees only), 3 (d + 1)^2 floats for degree d
+ *   from 1 to 3: every coefficient including the DC term, coefficient-major with the channels
+ *   interleaved, [k0.r, k0.g, k0.b, k1.r, k1.g, k1.b, ...], in the INRIA implementation's
+ *   convention whatever the file's, so that a capture draws the same in every format.
  *
- * Files:
+ * The format is told by the file's first bytes (by its name where they cannot tell):
  * - .ply in the layout of the INRIA implementation, read with vtkSplatPLYReader: vertex
  *   properties x, y, z, f_dc_0..2, optional f_rest_0..(3m - 1) (m = (d + 1)^2 - 1 per channel,
  *   stored channel-major: red's m coefficients, then green's, then blue's), opacity (a logit:
  *   the output is its logistic), scale_0..2 (logarithms: the output is their exponential) and
  *   rot_0..3 (a quaternion w first, normalized on output). Other properties (normals) are
  *   dropped. A number of f_rest properties other than 0, 9, 24 or 45 is an error.
+ * - PlayCanvas's compressed .ply: chunks of 256 Gaussians with quantized positions, scales,
+ *   colors and rotations, optional byte spherical harmonics.
  * - .splat (the antimatter15 web viewer's layout): 32-byte little-endian records of position
  *   (3 float32), scale (3 float32, linear), color and opacity (4 uint8, color/255 and
  *   opacity/255) and rotation (4 uint8, (q + 1) 128 clamped, w first).
+ * - Niantic's .spz, versions 2 and 3 (gzip) and 4 (zstd streams), taken in the frame they are
+ *   stored in (the .ply's, as splat-transform writes them); the antialiasing flag becomes the
+ *   field-data array "Antialiased".
+ * - PlayCanvas's SOG: the bundled .sog archive, or the meta.json of its folder form (versions
+ *   1 and 2), WebP images decoded with libwebp.
+ * - GaussianSplats3D's .ksplat, compression levels 0 to 2.
+ * - glTF 2.0 (.glb, .gltf) with KHR_gaussian_splatting: every Gaussian primitive of the scene,
+ *   node transforms applied to the kernels (not to their spherical harmonics), turned from
+ *   glTF's +y up into the .ply's +y down by a half turn about z.
  *
  * Invalid values (NaN, zero quaternions) are passed through: vtkVolumeSplatMapper skips and
  * counts them. Truncated or corrupt files give a vtkErrorMacro naming the file and what was
@@ -52,16 +64,18 @@ public:
 
   ///@{
   /**
-   * The .ply or .splat file to read.
+   * The capture file to read.
    */
   vtkSetStringMacro(FileName);
   vtkGetStringMacro(FileName);
   ///@}
 
   /**
-   * Whether `fileName` is a 3D Gaussian Splatting capture: a PLY file whose vertex element has
-   * the properties x, y, z, f_dc_0..2, opacity, scale_0..2 and rot_0..3 (only the header is
-   * read), or a file named .splat whose size is a non-zero multiple of 32 bytes.
+   * Whether `fileName` is a 3D Gaussian Splatting capture in one of the formats above: a PLY
+   * file whose vertex element has the properties x, y, z, f_dc_0..2, opacity, scale_0..2 and
+   * rot_0..3 or the compressed layout's packed properties (only the header is read), a file
+   * named .splat whose size is a non-zero multiple of 32 bytes, or a file that starts as the
+   * other formats do (a .json is taken as a SOG's meta.json).
    */
   static bool IsGaussianSplatFile(const char* fileName);
 

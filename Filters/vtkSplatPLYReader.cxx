@@ -127,6 +127,32 @@ public:
 
   // Reads the data of every element into `output`: the vertices as points and point data, the
   // faces as polygons and cell data. `progress` is called with the fraction of the file read.
+  // Reads the scalar properties of every element into field-data arrays of `output` named
+  // element.property; `progress` as above.
+  template <typename Progress>
+  void ReadAllElements(vtkPolyData* output, Progress&& progress)
+  {
+    for (const Element& element : this->Elements)
+    {
+      if (element.Properties.empty())
+      {
+        continue;
+      }
+      this->CheckFits(element);
+      std::vector<Sink> sinks(element.Properties.size());
+      for (std::size_t i = 0; i < element.Properties.size(); ++i)
+      {
+        const Property& property = element.Properties[i];
+        if (property.CountType < 0)
+        {
+          sinks[i].Array = NewArray(output->GetFieldData(), Types[property.Type].VTKType,
+            (element.Name + "." + property.Name).c_str(), 1, element.Count);
+        }
+      }
+      this->ReadElement(element, sinks, -1, 0, output, progress);
+    }
+  }
+
   template <typename Progress>
   void ReadData(vtkPolyData* output, Progress&& progress)
   {
@@ -312,7 +338,7 @@ private:
   }
 
   // A new array of `count` tuples added to `attributes`.
-  static vtkDataArray* NewArray(vtkDataSetAttributes* attributes, int vtkType, const char* name,
+  static vtkDataArray* NewArray(vtkFieldData* attributes, int vtkType, const char* name,
     int components, vtkIdType count)
   {
     vtkSmartPointer<vtkDataArray> array =
@@ -751,7 +777,15 @@ int vtkSplatPLYReader::RequestData(
   try
   {
     parser.ReadHeader(this->FileName);
-    parser.ReadData(result, [this](double fraction) { this->UpdateProgress(fraction); });
+    const auto progress = [this](double fraction) { this->UpdateProgress(fraction); };
+    if (this->ReadAllElements)
+    {
+      parser.ReadAllElements(result, progress);
+    }
+    else
+    {
+      parser.ReadData(result, progress);
+    }
   }
   catch (const ReadError& error)
   {
@@ -775,4 +809,5 @@ void vtkSplatPLYReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "ReadAllElements: " << (this->ReadAllElements ? "On" : "Off") << "\n";
 }

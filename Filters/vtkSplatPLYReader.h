@@ -59,6 +59,19 @@ public:
   vtkGetStringMacro(FileName);
   ///@}
 
+  ///@{
+  /**
+   * Off (the default): the output described above. On: the scalar properties of every element
+   * (vertex, face and any other) become field-data arrays of their own type named
+   * element.property ("chunk.min_x"), with no points or cells and no property required: the
+   * raw content of PLY files whose elements are not a mesh, such as the chunks of a compressed
+   * 3D Gaussian Splatting capture. List properties are read and dropped.
+   */
+  vtkSetMacro(ReadAllElements, bool);
+  vtkGetMacro(ReadAllElements, bool);
+  vtkBooleanMacro(ReadAllElements, bool);
+  ///@}
+
   /**
    * Whether the file starts with a valid PLY header (only the header is read).
    */
@@ -78,6 +91,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   char* FileName = nullptr;
+  bool ReadAllElements = false;
 
 private:
   vtkSplatPLYReader(const vtkSplatPLYReader&) = delete;

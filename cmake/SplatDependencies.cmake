@@ -39,6 +39,14 @@ find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 list(APPEND CMAKE_MODULE_PATH "/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB")
 find_package(OpenVDB REQUIRED)
 
+# The compressed capture formats of vtkGaussianSplatReader (Filters/SplatCapture*.cxx), from
+# Debian's packages rather than VTK's copies, which ParaView's and system VTK build differently:
+# zlib (.spz 2-3), zstd (.spz 4), minizip (the .sog archive), libwebp (.sog images) and jsoncpp
+# (.sog meta.json, glTF).
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(SplatCaptureLibraries REQUIRED IMPORTED_TARGET
+  zlib libzstd minizip libwebp jsoncpp)
+
 if (BUILD_TESTING)
   find_package(GTest REQUIRED)
 endif ()

@@ -18,6 +18,9 @@
 #    `import vtk`. python3-vtk9's own .deb is then installed again over them, so that the system
 #    VTK's Python works and dpkg's database says which package owns each file. pvpython does not
 #    need ParaView's copies: its PYTHONPATH holds the unpacked package.
+# 4. PlayCanvas's splat-transform (npm, pinned), the converter the capture format tests compare
+#    the readers against, under SPLAT_DEPS_DIR/splat-transform; skipped with a note where the
+#    machine has no npm (those tests then skip).
 # While python3-paraview is force-installed apt refuses to install anything else, so when a
 # package is missing it is removed first (dpkg --remove; the shared files stay with
 # python3-vtk9), then everything is installed and steps 2 and 3 run again.
@@ -33,6 +36,8 @@ PACKAGES=(
   # VTK 9.1, OpenVDB, OpenImageIO, GLM, Eigen
   libvtk9-dev python3-vtk9 libopenvdb-dev libboost-iostreams-dev libglm-dev libeigen3-dev
   libopenimageio-dev libopencv-core-dev openimageio-tools
+  # the compressed 3DGS capture formats: .spz (zlib, zstd), .sog (minizip, WebP), glTF (jsoncpp)
+  zlib1g-dev libzstd-dev libminizip-dev libwebp-dev libjsoncpp-dev
   # offscreen OpenGL (Mesa llvmpipe) under a virtual X server
   xvfb xauth libgl1-mesa-dri mesa-utils
   # ParaView 5.11 and what its CMake package asks for
@@ -167,4 +172,20 @@ if [ "$(dpkg-query -S "$vtk_py_init" 2>/dev/null | cut -d: -f1)" != python3-vtk9
   quietly "${SUDO[@]}" dpkg -i --force-conflicts --force-overwrite "$deb"
   /usr/bin/python3 -c "import vtk" >/dev/null 2>&1 \
     || die "/usr/bin/python3 still cannot import vtk after reinstalling python3-vtk9"
+fi
+
+# --- 4. splat-transform for the capture format tests ----------------------------------------
+ST_VERSION=3.7.0
+ST_DIR="$DEPS_DIR/splat-transform"
+if [ "$(cat "$ST_DIR/.version" 2>/dev/null || true)" != "$ST_VERSION" ]; then
+  if command -v npm >/dev/null 2>&1; then
+    log "installing @playcanvas/splat-transform@$ST_VERSION into $ST_DIR"
+    rm -rf "$ST_DIR"
+    mkdir -p "$ST_DIR"
+    quietly npm install --prefix "$ST_DIR" --no-audit --no-fund --no-save \
+      "@playcanvas/splat-transform@$ST_VERSION"
+    printf '%s\n' "$ST_VERSION" > "$ST_DIR/.version"
+  else
+    log "npm not found: the capture format round-trip tests will be skipped"
+  fi
 fi
