@@ -3,7 +3,7 @@
 set(splat_vtk_components
   CommonCore CommonDataModel CommonMath CommonSystem CommonTransforms
   FiltersCore FiltersGeneral FiltersPoints FiltersSources
-  IOGeometry IOLegacy IOPLY IOXML IOImage
+  IOCore IOGeometry IOLegacy IOPLY IOXML IOImage
   ImagingCore InteractionStyle
   RenderingCore RenderingOpenGL2 RenderingFreeType RenderingVolume RenderingVolumeOpenGL2
   TestingRendering)

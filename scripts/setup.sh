@@ -18,9 +18,10 @@
 #    `import vtk`. python3-vtk9's own .deb is then installed again over them, so that the system
 #    VTK's Python works and dpkg's database says which package owns each file. pvpython does not
 #    need ParaView's copies: its PYTHONPATH holds the unpacked package.
-# 4. PlayCanvas's splat-transform (npm, pinned), the converter the capture format tests compare
-#    the readers against, under SPLAT_DEPS_DIR/splat-transform; skipped with a note where the
-#    machine has no npm (those tests then skip).
+# 4. The converters the capture format tests compare the readers against (npm, pinned):
+#    PlayCanvas's splat-transform and GaussianSplats3D (.ksplat), under
+#    SPLAT_DEPS_DIR/capture-tools; skipped with a note where the machine has no npm (those tests
+#    then skip).
 # While python3-paraview is force-installed apt refuses to install anything else, so when a
 # package is missing it is removed first (dpkg --remove; the shared files stay with
 # python3-vtk9), then everything is installed and steps 2 and 3 run again.
@@ -174,17 +175,16 @@ if [ "$(dpkg-query -S "$vtk_py_init" 2>/dev/null | cut -d: -f1)" != python3-vtk9
     || die "/usr/bin/python3 still cannot import vtk after reinstalling python3-vtk9"
 fi
 
-# --- 4. splat-transform for the capture format tests ----------------------------------------
-ST_VERSION=3.7.0
-ST_DIR="$DEPS_DIR/splat-transform"
-if [ "$(cat "$ST_DIR/.version" 2>/dev/null || true)" != "$ST_VERSION" ]; then
+# --- 4. The converters of the capture format tests -----------------------------------------
+CAPTURE_TOOLS=(@playcanvas/splat-transform@3.7.0 @mkkellogg/gaussian-splats-3d@0.4.7 three@0.160.0)
+TOOLS_DIR="$DEPS_DIR/capture-tools"
+if [ "$(cat "$TOOLS_DIR/.version" 2>/dev/null || true)" != "${CAPTURE_TOOLS[*]}" ]; then
   if command -v npm >/dev/null 2>&1; then
-    log "installing @playcanvas/splat-transform@$ST_VERSION into $ST_DIR"
-    rm -rf "$ST_DIR"
-    mkdir -p "$ST_DIR"
-    quietly npm install --prefix "$ST_DIR" --no-audit --no-fund --no-save \
-      "@playcanvas/splat-transform@$ST_VERSION"
-    printf '%s\n' "$ST_VERSION" > "$ST_DIR/.version"
+    log "installing ${CAPTURE_TOOLS[*]} into $TOOLS_DIR"
+    rm -rf "$TOOLS_DIR"
+    mkdir -p "$TOOLS_DIR"
+    quietly npm install --prefix "$TOOLS_DIR" --no-audit --no-fund --no-save "${CAPTURE_TOOLS[@]}"
+    printf '%s\n' "${CAPTURE_TOOLS[*]}" > "$TOOLS_DIR/.version"
   else
     log "npm not found: the capture format round-trip tests will be skipped"
   fi
