@@ -141,9 +141,13 @@ public:
     const std::uint64_t offset =
       Unsigned(bufferView, "byteOffset", 0) + Unsigned(accessor, "byteOffset", 0);
     const std::uint64_t length = Unsigned(bufferView, "byteLength", 0);
-    const std::uint64_t needed = view.Count ? (view.Count - 1) * view.Stride + element : 0;
-    if (view.Stride < element || Unsigned(accessor, "byteOffset", 0) + needed > length ||
-      Unsigned(bufferView, "byteOffset", 0) + length > buffer.size())
+    const std::uint64_t start = Unsigned(accessor, "byteOffset", 0);
+    // Compared by division: a corrupt count or stride must not overflow the product.
+    if (view.Stride < element || view.Stride > (std::uint64_t(1) << 32) || start > length ||
+      Unsigned(bufferView, "byteOffset", 0) > buffer.size() ||
+      length > buffer.size() - Unsigned(bufferView, "byteOffset", 0) ||
+      (view.Count && (length - start < element ||
+        view.Count - 1 > (length - start - element) / view.Stride)))
     {
       Corrupt("an accessor of " + std::to_string(view.Count) + " elements does not fit its buffer");
     }

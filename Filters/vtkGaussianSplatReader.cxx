@@ -174,6 +174,12 @@ int vtkGaussianSplatReader::RequestData(
     this->Fail(vtkErrorCode::UnknownError, "out of memory");
     ok = false;
   }
+  catch (const std::exception& e)
+  {
+    // A library's own exception on corrupt data (jsoncpp's on a value of the wrong type).
+    this->Fail(vtkErrorCode::FileFormatError, std::string("corrupt file: ") + e.what());
+    ok = false;
+  }
   if (!ok)
   {
     this->SphericalHarmonicsDegree = -1;

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The point and kernel formats splat_render reads, fuzzed like TestReaderFuzz.cxx does the
 // volume and XML ones: PLY meshes in the three encodings (vtkSplatPLYReader), 3D Gaussian
-// Splatting captures as .ply and .splat (vtkGaussianSplatReader), .xyz and .off text files, and
+// Splatting captures as .ply and .splat (vtkGaussianSplatReader) and, with -formats DIR, the
+// compressed capture formats TestGaussianSplatFormats converted, .xyz and .off text files, and
 // OpenVDB fog and level sets (vtkOpenVDBReader), each written here (and the real bunny.ply and
 // sphere.vdb of ../shared/data when present), truncated and with mutated
 // header fields and counts, and read in a child process through the entry points splat_render
@@ -264,6 +265,133 @@ int FuzzVdb(splatfuzz::Tally& tally, const std::string& dir)
   return failures;
 }
 
+// Byte flips: the byte at each of `count` offsets spread through [begin, end) set to 0 and 255.
+std::vector<Variant> ByteFlips(const Bytes& file, std::size_t begin, std::size_t end, int count)
+{
+  std::vector<Variant> variants;
+  end = std::min(end, file.size());
+  for (int k = 0; k < count && begin < end; ++k)
+  {
+    const std::size_t at = begin + (end - begin) * k / count;
+    Append(variants, splatfuzz::FieldMutations(file, "byte " + std::to_string(at), at, 1, { 0, 255 }));
+  }
+  return variants;
+}
+
+// The 32-bit little-endian words at `offsets` set to IntegerValues of what they hold.
+std::vector<Variant> WordMutations(const Bytes& file, const std::vector<std::size_t>& offsets)
+{
+  std::vector<Variant> variants;
+  for (std::size_t at : offsets)
+  {
+    if (at + 4 <= file.size())
+    {
+      std::uint32_t value;
+      std::memcpy(&value, file.data() + at, 4);
+      Append(variants, splatfuzz::FieldMutations(
+                         file, "word at " + std::to_string(at), at, 4, splatfuzz::IntegerValues(value)));
+    }
+  }
+  return variants;
+}
+
+// The compressed capture formats as TestGaussianSplatFormats leaves them (converted by
+// splat-transform and GaussianSplats3D from its degree-2 torus): truncated, with their header
+// fields, JSON numbers and compressed bytes mutated. Skipped when that test has not run.
+int FuzzCaptureFormats(splatfuzz::Tally& tally, const std::string& dir, const std::string& from)
+{
+  const std::string stem = from + "/torus-sh2-";
+  if (!vtksys::SystemTools::FileExists(stem + "spz.spz", true))
+  {
+    std::cout << "the converted captures of TestGaussianSplatFormats are absent (" << from
+              << "): their formats are not fuzzed\n";
+    return 0;
+  }
+  int failures = 0;
+  const auto run = [&](const std::string& name, const std::string& file,
+                     const std::function<std::vector<Variant>(const Bytes&)>& variants)
+  {
+    const Bytes bytes = splatfuzz::ReadFile(from + "/" + file);
+    const std::string path = dir + "/fuzz-" + file;
+    splatfuzz::WriteFile(path, bytes);
+    failures +=
+      tally.Run(name, &ReadCapture, path, variants(bytes), Reference(&ReadCapture, path, 3000));
+  };
+  // .spz 4: its 32-byte header and table of contents; 3: the gzip stream.
+  run("spz 4", "torus-sh2-spz.spz",
+    [](const Bytes& f)
+    {
+      auto v = splatfuzz::Truncations(f, 128, 128, 32);
+      Append(v, WordMutations(f, { 4, 8, 12, 16, 32, 36, 40, 44, 48, 56, 64, 72 }));
+      Append(v, ByteFlips(f, 128, f.size(), 24));
+      return v;
+    });
+  run("spz 3", "torus-sh2-spz-v3.spz",
+    [](const Bytes& f)
+    {
+      auto v = splatfuzz::Truncations(f, 32, 32, 32);
+      Append(v, ByteFlips(f, 0, f.size(), 48));
+      return v;
+    });
+  run("compressed ply", "torus-sh2-compressed-ply.compressed.ply",
+    [](const Bytes& f)
+    {
+      auto v = HeaderVariants(f, HeaderEnd(f),
+        { "chunk", "vertex", "sh", "packed_position", "packed_color", "min_x", "uint", "uchar",
+          "float", "f_rest_0" });
+      Append(v, ByteFlips(f, HeaderEnd(f), f.size(), 24));
+      return v;
+    });
+  // The .sog archive: its local headers, central directory and entries.
+  run("sog", "torus-sh2-sog.sog",
+    [](const Bytes& f)
+    {
+      auto v = splatfuzz::Truncations(f, 64, 64, 32);
+      Append(v, ByteFlips(f, 0, f.size(), 64));
+      Append(v, WordMutations(f, { 14, 18, 22, f.size() - 22 + 12, f.size() - 22 + 16 }));
+      return v;
+    });
+  // (The degree-0 file: each variant is a copy, and its JSON has fewer tokens.)
+  run("glb", "torus-sh0-glb.glb",
+    [](const Bytes& f)
+    {
+      auto v = splatfuzz::Truncations(f, 64, 64, 32);
+      Append(v, WordMutations(f, { 4, 8, 12, 16 }));
+      std::uint32_t json = 0;
+      std::memcpy(&json, f.data() + 12, 4);
+      Append(v, splatfuzz::TokenMutations(f, 20, 20 + std::min<std::size_t>(json, f.size()),
+                  { "POSITION", "VEC3", "VEC4", "SCALAR", "5126", "5121", "true" }));
+      return v;
+    });
+  for (const char* level : { "0", "1", "2" })
+  {
+    run(std::string("ksplat ") + level, std::string("torus-sh2-ksplat-") + level + ".ksplat",
+      [](const Bytes& f)
+      {
+        auto v = splatfuzz::Truncations(f, 0, 0, 48);
+        Append(v, WordMutations(f, { 0, 4, 8, 16, 20, 36, 40, 4096, 4100, 4104, 4108, 4112,
+                                      4116, 4120, 4124, 4128, 4132, 4136 }));
+        Append(v, ByteFlips(f, 5120, f.size(), 16));
+        return v;
+      });
+  }
+  // The SOG folder: meta.json's tokens (outside its 256-entry codebooks) beside its images.
+  const std::string folder = dir + "/fuzz-sog-folder";
+  vtksys::SystemTools::CopyADirectory(stem + "sog-folder", folder);
+  const std::string meta = folder + "/meta.json";
+  const Bytes json = splatfuzz::ReadFile(meta);
+  std::vector<Variant> variants = splatfuzz::Truncations(json, 0, 0, 40);
+  Append(variants, splatfuzz::TokenMutations(json, 0, json.size(),
+                     { "version", "count", "means", "files", "codebook", "bands", "shN", "" },
+                     [](const Bytes& b, std::size_t i)
+                     {
+                       const std::size_t open = b.rfind("\"codebook\"", i);
+                       return open == Bytes::npos || b.find(']', open) < i;
+                     }));
+  failures += tally.Run("sog meta.json", &ReadCapture, meta, variants, Reference(&ReadCapture, meta, 3000));
+  return failures;
+}
+
 // The real files of ../shared/data when present: the Stanford bunny (binary PLY) and the
 // level set sphere.vdb, read in place and their variants written to `dir`.
 int FuzzRealFiles(splatfuzz::Tally& tally, const std::string& dir, const std::string& data)
@@ -311,5 +439,6 @@ int main(int argc, char* argv[])
   failures += FuzzText(tally, dir);
   failures += FuzzVdb(tally, dir);
   failures += FuzzRealFiles(tally, dir, splattest::Argument(argc, argv, "-D"));
+  failures += FuzzCaptureFormats(tally, dir, splattest::Argument(argc, argv, "-formats"));
   return tally.Report(std::cout, failures);
 }
