@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The files the example programs read, by extension: meshes and point clouds (.ply, .vtp, .xyz,
-// .off), 3D Gaussian Splatting captures (.ply with 3DGS properties, .splat) and volumes (.nii,
-// .nii.gz, .vti, .mhd, .mha). Every reader throws std::runtime_error with a message naming the
+// .off), 3D Gaussian Splatting captures (every format vtkGaussianSplatReader reads, by content)
+// and volumes (.nii, .nii.gz, .vti, .mhd, .mha). Every reader throws std::runtime_error with a message naming the
 // file when it cannot read it.
 #ifndef SplatFileReaders_h
 #define SplatFileReaders_h
@@ -336,7 +336,8 @@ inline vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
   {
     throw std::runtime_error(
       "'" + path + "': unknown file type; splat_render reads .ply, .vtp, .xyz and .off (surfaces), "
-      ".ply and .splat (3D Gaussian Splatting) and .nii, .nii.gz, .vti, .mhd and .mha (volumes)");
+      "3D Gaussian Splatting captures (.ply, .splat, .spz, .sog, meta.json, .ksplat, .glb, .gltf) "
+      "and .nii, .nii.gz, .vti, .mhd and .mha (volumes)");
   }
   if (data->GetNumberOfPoints() == 0)
   {
@@ -346,8 +347,9 @@ inline vtkSmartPointer<vtkPolyData> ReadPolyData(const std::string& path)
   return data;
 }
 
-// Whether `path` is a 3D Gaussian Splatting capture: named .splat, or a PLY file whose vertices
-// have the 3DGS properties (vtkGaussianSplatReader::IsGaussianSplatFile reads the header).
+// Whether `path` is a 3D Gaussian Splatting capture: named .splat, or a file
+// vtkGaussianSplatReader::IsGaussianSplatFile recognizes by its first bytes (a .ply whose
+// vertices have the 3DGS properties, .spz, .sog, .ksplat, a glTF using KHR_gaussian_splatting).
 inline bool IsGaussianSplatFile(const std::string& path)
 {
   return HasExtension(path, ".splat") || vtkGaussianSplatReader::IsGaussianSplatFile(path.c_str());

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // splat_render: renders a point cloud or a mesh (.ply, .vtp, .xyz, .off) as EWA surface splats,
-// or a 3D Gaussian Splatting capture (.ply, .splat) or a volume (.nii, .nii.gz, .vti, .mhd, .mha)
+// or a 3D Gaussian Splatting capture (.ply, compressed .ply, .splat, .spz, .sog or its
+// meta.json, .ksplat, .glb, .gltf) or a volume (.nii, .nii.gz, .vti, .mhd, .mha)
 // by EWA volume splatting, into a PNG and reports the frame time. Without a file it renders the
 // project's demo scenes.
 // Run `splat_render --help` for the options.

@@ -34,8 +34,9 @@ splats, the time per frame and the splats per second. A volume FILE (.nii, .nii.
 or .mha: image data with point scalars) is drawn by vtkVolumeSplatMapper, one Gaussian kernel
 per voxel, through a transfer function over the scalar range (transparent below a fifth of
 it, then more opaque and from dark red to white towards the top), shaded unless --shade off.
-A 3D Gaussian Splatting capture (.splat, or a .ply whose vertices have the 3DGS properties
-f_dc_*, opacity, scale_* and rot_*) is drawn by vtkVolumeSplatMapper as its Gaussians with
+A 3D Gaussian Splatting capture (a .ply whose vertices have the 3DGS properties f_dc_*,
+opacity, scale_* and rot_* or PlayCanvas's compressed ones, .splat, .spz, .sog or the meta.json
+of its folder, .ksplat, or a .glb or .gltf with KHR_gaussian_splatting) is drawn by vtkVolumeSplatMapper as its Gaussians with
 their own colors and opacities; other .ply files are meshes or point clouds. An OpenVDB file
 (.vdb) is listed grid by grid and its grid (--grid, default the first one vtkOpenVDBReader
 supports) drawn by what it holds: fog volumes and other scalar or vector grids as one Gaussian

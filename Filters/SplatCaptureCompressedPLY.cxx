@@ -5,18 +5,15 @@
 // spherical harmonics as one byte per INRIA f_rest value.
 #include "SplatCaptureFormats.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedIntArray.h"
 #include "vtkErrorCode.h"
-#include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
-#include "vtkSplatPLYReader.h"
 
 #include <cmath>
 
@@ -36,17 +33,6 @@ float Unorm(std::uint32_t word, int shift, int bits)
 float Lerp(float a, float b, float t)
 {
   return a * (1.0f - t) + b * t;
-}
-
-// Keeps vtkSplatPLYReader's first error message (it names the file) in the std::string
-// `clientData`.
-void KeepError(vtkObject*, unsigned long, void* clientData, void* callData)
-{
-  auto* message = static_cast<std::string*>(clientData);
-  if (message->empty())
-  {
-    *message = static_cast<const char*>(callData);
-  }
 }
 
 // The properties of the file's elements, by element.property name.
@@ -90,25 +76,11 @@ private:
 //------------------------------------------------------------------------------
 void ReadCompressedPLY(const std::string& fileName, vtkPolyData* output, const Progress& progress)
 {
-  vtkNew<vtkSplatPLYReader> ply;
-  ply->SetFileName(fileName.c_str());
-  ply->ReadAllElementsOn();
-  std::string message;
-  vtkNew<vtkCallbackCommand> errors;
-  errors->SetCallback(KeepError);
-  errors->SetClientData(&message);
-  ply->AddObserver(vtkCommand::ErrorEvent, errors);
-  ply->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
-  ply->Update();
-  if (ply->GetErrorCode() != vtkErrorCode::NoError)
-  {
-    const std::size_t start = message.find(fileName + ": ");
-    throw ReadError(ply->GetErrorCode(),
-      start == std::string::npos ? message : message.substr(start + fileName.size() + 2));
-  }
+  vtkSmartPointer<vtkPolyData> elements =
+    ReadPLYFile(fileName, true, [&progress](double f) { progress(0.6 * f); });
   progress(0.6);
-  const Columns columns(ply->GetOutput()->GetFieldData());
-  vtkDataArray* positions = ply->GetOutput()->GetFieldData()->GetArray("vertex.packed_position");
+  const Columns columns(elements->GetFieldData());
+  vtkDataArray* positions = elements->GetFieldData()->GetArray("vertex.packed_position");
   const vtkIdType n = positions ? positions->GetNumberOfTuples() : 0;
   const vtkIdType chunks = (n + ChunkSize - 1) / ChunkSize;
   std::vector<const std::uint32_t*> words;

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SplatCaptureFormats.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkErrorCode.h"
+#include "vtkExecutive.h"
 #include "vtkIntArray.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -322,6 +324,46 @@ std::vector<std::uint8_t> Gunzip(
           (stream.msg ? stream.msg : "error") + ")");
   }
   return out;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> ReadPLYFile(
+  const std::string& fileName, bool allElements, const Progress& progress)
+{
+  vtkNew<vtkSplatPLYReader> ply;
+  ply->SetFileName(fileName.c_str());
+  ply->SetReadAllElements(allElements);
+  vtkNew<vtkCallbackCommand> forward;
+  forward->SetCallback([](vtkObject* caller, unsigned long, void* clientData, void*)
+    { (*static_cast<const Progress*>(clientData))(vtkAlgorithm::SafeDownCast(caller)->GetProgress()); });
+  forward->SetClientData(const_cast<Progress*>(&progress));
+  ply->AddObserver(vtkCommand::ProgressEvent, forward);
+  // The first error message of the reader or its executive, without VTK's prefix.
+  std::string message;
+  vtkNew<vtkCallbackCommand> errors;
+  errors->SetCallback([](vtkObject*, unsigned long, void* clientData, void* callData)
+    {
+      auto* kept = static_cast<std::string*>(clientData);
+      if (kept->empty())
+      {
+        const std::string text = static_cast<const char*>(callData);
+        const std::size_t start = text.find("): ");
+        *kept = start == std::string::npos ? text : text.substr(start + 3);
+        kept->erase(kept->find_last_not_of(" \n") + 1);
+      }
+    });
+  errors->SetClientData(&message);
+  ply->AddObserver(vtkCommand::ErrorEvent, errors);
+  ply->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  ply->Update();
+  if (ply->GetErrorCode() != vtkErrorCode::NoError)
+  {
+    // vtkSplatPLYReader's message names the file, the place and the problem.
+    const std::string prefix = fileName + ": ";
+    throw ReadError(ply->GetErrorCode(),
+      message.compare(0, prefix.size(), prefix) == 0 ? message.substr(prefix.size()) : message);
+  }
+  return ply->GetOutput();
 }
 
 //------------------------------------------------------------------------------

@@ -158,6 +158,11 @@ std::vector<std::uint8_t> ReadFile(const std::string& fileName, std::size_t limi
 std::vector<std::uint8_t> Gunzip(
   const std::uint8_t* data, std::size_t size, std::size_t limit, bool prefix);
 
+// The PLY file read by vtkSplatPLYReader (with `allElements`, every element's properties as
+// field data); its error, without the file name, thrown as a ReadError.
+vtkSmartPointer<vtkPolyData> ReadPLYFile(
+  const std::string& fileName, bool allElements, const Progress& progress);
+
 // A half-precision float's value.
 float HalfToFloat(std::uint16_t half);
 

@@ -2,9 +2,7 @@
 #include "vtkGaussianSplatReader.h"
 
 #include "vtkByteSwap.h"
-#include "vtkCallbackCommand.h"
 #include "vtkErrorCode.h"
-#include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -47,27 +45,6 @@ vtkSmartPointer<vtkFloatArray> AsFloat(vtkDataArray* array)
   converted->DeepCopy(array);
   return converted;
 }
-
-void ForwardProgress(vtkObject* caller, unsigned long, void* clientData, void*)
-{
-  auto* reader = static_cast<vtkGaussianSplatReader*>(clientData);
-  // Reading the PLY file is most of the work; the conversion follows.
-  reader->UpdateProgress(0.8 * vtkAlgorithm::SafeDownCast(caller)->GetProgress());
-}
-
-// Keeps the first error message of vtkSplatPLYReader (or its executive) in the std::string
-// `clientData`, without VTK's prefix, for this reader to report as its own.
-void KeepError(vtkObject*, unsigned long, void* clientData, void* callData)
-{
-  auto* message = static_cast<std::string*>(clientData);
-  if (message->empty())
-  {
-    const std::string text = static_cast<const char*>(callData);
-    const std::size_t start = text.find("): ");
-    *message = start == std::string::npos ? text : text.substr(start + 3);
-    message->erase(message->find_last_not_of(" \n") + 1);
-  }
-}
 }
 
 //------------------------------------------------------------------------------
@@ -89,10 +66,25 @@ bool vtkGaussianSplatReader::IsGaussianSplatFile(const char* fileName)
   {
     return false;
   }
+  // The first bytes of the file hold this text (the JSON of a glTF or a SOG's meta.json).
+  const auto mentions = [fileName](const char* text)
+  {
+    std::ifstream in(fileName, std::ios::binary);
+    std::string head(1 << 20, '\0');
+    in.read(&head[0], static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    return head.find(text) != std::string::npos;
+  };
   switch (Identify(fileName))
   {
     case Format::Unknown:
       return false;
+    case Format::GLTF:
+      return mentions("KHR_gaussian_splatting"); // other glTF files are meshes
+    case Format::SOG:
+      return vtksys::SystemTools::LowerCase(
+               vtksys::SystemTools::GetFilenameLastExtension(fileName)) == ".sog" ||
+        mentions("\"means\"");
     case Format::Splat:
     {
       const unsigned long size = vtksys::SystemTools::FileLength(fileName);
@@ -197,28 +189,9 @@ int vtkGaussianSplatReader::RequestData(
 //------------------------------------------------------------------------------
 bool vtkGaussianSplatReader::ReadPLY(vtkPolyData* output)
 {
-  vtkNew<vtkSplatPLYReader> ply;
-  ply->SetFileName(this->FileName);
-  vtkNew<vtkCallbackCommand> progress;
-  progress->SetCallback(ForwardProgress);
-  progress->SetClientData(this);
-  ply->AddObserver(vtkCommand::ProgressEvent, progress);
-  std::string message;
-  vtkNew<vtkCallbackCommand> errors;
-  errors->SetCallback(KeepError);
-  errors->SetClientData(&message);
-  ply->AddObserver(vtkCommand::ErrorEvent, errors);
-  ply->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
-  ply->Update();
-  if (ply->GetErrorCode() != vtkErrorCode::NoError)
-  {
-    // vtkSplatPLYReader's message names the file, the place and the problem.
-    const std::string prefix = std::string(this->FileName) + ": ";
-    this->Fail(ply->GetErrorCode(),
-      message.compare(0, prefix.size(), prefix) == 0 ? message.substr(prefix.size()) : message);
-    return false;
-  }
-  vtkPolyData* vertices = ply->GetOutput();
+  // Reading the PLY file is most of the work; the conversion follows.
+  vtkSmartPointer<vtkPolyData> vertices =
+    ReadPLYFile(this->FileName, false, [this](double f) { this->UpdateProgress(0.8 * f); });
   vtkPointData* properties = vertices->GetPointData();
   // x, y and z are the points; the other properties are point-data arrays.
   for (auto name = std::begin(PLYProperties) + 3; name != std::end(PLYProperties);

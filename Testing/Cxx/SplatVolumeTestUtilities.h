@@ -44,6 +44,31 @@ inline vtkVolume* AddVolume(
 }
 
 /**
+ * `data` drawn by `mapper` (its default property, on black) in a size x size window from the
+ * camera at `position` looking at `focalPoint` with `up`; the window, rendered, keeps the
+ * renderer and its camera.
+ */
+inline vtkSmartPointer<vtkRenderWindow> DrawVolume(vtkAbstractVolumeMapper* mapper,
+  vtkDataSet* data, const double position[3], const double focalPoint[3], const double up[3],
+  int size)
+{
+  auto window = MakeRenderWindow(size, size);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(0.0, 0.0, 0.0);
+  window->AddRenderer(renderer);
+  mapper->SetInputDataObject(data);
+  vtkNew<vtkVolumeProperty> property;
+  AddVolume(renderer, mapper, property);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(position);
+  camera->SetFocalPoint(focalPoint);
+  camera->SetViewUp(up);
+  renderer->ResetCameraClippingRange();
+  window->Render();
+  return window;
+}
+
+/**
  * The arrays of a kernel set in the 3D Gaussian Splatting convention, under
  * vtkVolumeSplatMapper's default names, empty: Scale (3 components), Rotation (4, w x y z),
  * Opacity (1) and Color (3). AddTo() puts them on a point set's point data.

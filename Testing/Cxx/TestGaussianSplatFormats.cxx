@@ -310,22 +310,10 @@ private:
 // The capture drawn by vtkVolumeSplatMapper (CPU) from `view`, 200 x 200 RGB.
 std::vector<double> Draw(vtkPolyData* data, const splattest::CaptureView& view)
 {
-  auto window = splattest::MakeRenderWindow(200, 200);
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(0.0, 0.0, 0.0);
-  window->AddRenderer(renderer);
   vtkNew<vtkVolumeSplatMapper> mapper;
-  mapper->SetInputData(data);
   mapper->SetBackend(vtkSplatBackend::CPU);
-  vtkNew<vtkVolumeProperty> property;
-  splattest::AddVolume(renderer, mapper, property);
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(view.Position.data());
-  camera->SetFocalPoint(view.FocalPoint.data());
-  camera->SetViewUp(view.Up.data());
-  renderer->ResetCameraClippingRange();
-  window->Render();
-  return splattest::ToRGB(splattest::Capture(window));
+  return splattest::ToRGB(splattest::Capture(splattest::DrawVolume(
+    mapper, data, view.Position.data(), view.FocalPoint.data(), view.Up.data(), 200)));
 }
 
 void TestFormat(const std::string& sourcePath, vtkPolyData* source, int degree,

@@ -27,6 +27,7 @@
 #include "vtkImageData.h"
 #include "vtkPointSet.h"
 #include "vtkRenderWindow.h"
+#include "vtkRendererCollection.h"
 #include "vtkRenderer.h"
 #include "vtkSMPTools.h"
 #include "vtkVolume.h"
@@ -64,20 +65,10 @@ struct Rendered
 Rendered Draw(vtkVolumeSplatMapper* mapper, vtkPointSet* data, const splattest::CaptureView& view,
   int backend = vtkSplatBackend::CPU)
 {
-  auto window = splattest::MakeRenderWindow(Size, Size);
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(0.0, 0.0, 0.0);
-  window->AddRenderer(renderer);
-  mapper->SetInputData(data);
   mapper->SetBackend(backend);
-  vtkNew<vtkVolumeProperty> property;
-  splattest::AddVolume(renderer, mapper, property);
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(view.Position.data());
-  camera->SetFocalPoint(view.FocalPoint.data());
-  camera->SetViewUp(view.Up.data());
-  renderer->ResetCameraClippingRange();
-  window->Render();
+  auto window = splattest::DrawVolume(
+    mapper, data, view.Position.data(), view.FocalPoint.data(), view.Up.data(), Size);
+  vtkCamera* camera = window->GetRenderers()->GetFirstRenderer()->GetActiveCamera();
   Rendered out;
   out.RGB = splattest::ToRGB(splattest::Capture(window));
   out.Camera = splattest::ReferenceCameraOf(camera, Size, Size);

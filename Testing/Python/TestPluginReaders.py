@@ -2,7 +2,7 @@
 OpenDataFile) and their proxies, and the Splat filters and sources in their menus.
 
     pvpython TestPluginReaders.py --plugin PATH/SplatPlugin.so \
-        --vdb-writer PATH/splat_write_test_vdb
+        --vdb-writer PATH/splat_write_test_vdb [--capture-tools NPM_PREFIX]
 
 Every file is written by the test in a temporary directory: the .vdb by splat_write_test_vdb
 (SplatWriteTestVdb.cxx: Debian has no OpenVDB Python module), the PLY and .splat files here.
@@ -16,7 +16,9 @@ Checks that
 - the reader sends progress events from 0 to 1 and ParaView's progress handler (what the
   progress bar shows) relays them;
 - a truncated .vdb and a text file named .vdb give an error naming the file and empty output;
-- OpenDataFile picks Gaussian Splat Reader for a 3D Gaussian Splatting .ply (and for .splat),
+- OpenDataFile picks Gaussian Splat Reader for a 3D Gaussian Splatting .ply (and for .splat;
+  with --capture-tools, for the .spz, .sog and its meta.json, glTF and compressed .ply that
+  splat-transform converts the capture to), and its File > Open lines name each format,
   with the Scale, Rotation, Opacity and Color arrays decoded, and ParaView's PLY Reader for a
   PLY mesh, which Gaussian Splat Reader declines; Splat PLY Reader, created explicitly, reads the
   mesh; a truncated capture and a truncated mesh give errors naming the file, not crashes;
@@ -336,6 +338,38 @@ def test_gaussian_splats(simple, servermanager, tmp):
         simple.Delete(proxy)
 
 
+def test_capture_formats(simple, servermanager, tools, tmp):
+    """The compressed formats, converted from the 4-Gaussian capture by splat-transform when it is
+    installed: each opens with Gaussian Splat Reader and reads the 4 Gaussians."""
+    st = os.path.join(tools or "", "node_modules", ".bin", "splat-transform")
+    if not os.path.isfile(st):
+        print("the capture converters are absent (%s): formats not tested" % tools)
+        return
+    capture = os.path.join(tmp, "formats.ply")
+    write_capture(capture, 4)
+    folder = os.path.join(tmp, "sog-folder")
+    os.makedirs(folder, exist_ok=True)
+    formats = ("capture.spz", "capture.compressed.ply", "capture.sog",
+               os.path.join("sog-folder", "meta.json"), "capture.glb")
+    proxy = "GaussianSplatReader"
+    for name in formats:
+        path = os.path.join(tmp, name)
+        result = subprocess.run([st, "-q", "-w", "-g", "cpu", capture, path],
+                                capture_output=True, text=True)
+        if not check(result.returncode == 0, "splat-transform wrote %s %s"
+                     % (name, result.stderr.strip()[-300:])):
+            continue
+        choice, _ = factory_choice(servermanager, path)
+        check(choice == ("sources", proxy),
+              "the reader factory picks %s for %s (got %s)" % (proxy, name, choice))
+        reader = simple.OpenDataFile(path)
+        reader.UpdatePipeline()
+        check(point_count(reader) == 4, "%s: 4 Gaussians (got %d)" % (name, point_count(reader)))
+        check(close_range(array_range(reader, "Opacity"), 0.8, 0.8, 0.01),
+              "%s: opacity 0.8 (got %s)" % (name, array_range(reader, "Opacity")))
+        simple.Delete(reader)
+
+
 # -- Menus --------------------------------------------------------------------------------------
 def test_menus(simple, servermanager):
     pxm = servermanager.ProxyManager().SMProxyManager
@@ -358,6 +392,12 @@ def test_menus(simple, servermanager):
         hints = pxm.GetProxyHints("sources", name)
         check(hints is not None and hints.FindNestedElementByName("ReaderFactory") is not None,
               "%s is in File > Open" % name)
+    # Gaussian Splat Reader: a File > Open line per capture format.
+    hints = pxm.GetProxyHints("sources", "GaussianSplatReader")
+    lines = [hints.GetNestedElement(i) for i in range(hints.GetNumberOfNestedElements())]
+    extensions = [e.GetAttribute("extensions") for e in lines if e.GetName() == "ReaderFactory"]
+    check(extensions == ["ply", "spz", "sog", "ksplat", "splat", "glb gltf"],
+          "Gaussian Splat Reader has a File > Open line per format (got %s)" % extensions)
 
     sphere = globals()["SurfelSphere"](NumberOfPoints=500, Radius=2.0)
     sphere.UpdatePipeline()
@@ -373,6 +413,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--plugin", required=True, help="path of SplatPlugin.so")
     parser.add_argument("--vdb-writer", required=True, help="path of splat_write_test_vdb")
+    parser.add_argument("--capture-tools", help="npm prefix of splat-transform (scripts/setup.sh)")
     args = parser.parse_args()
 
     if not load_plugin(args.plugin, globals()):
@@ -381,6 +422,8 @@ def main():
     with tempfile.TemporaryDirectory(prefix="splat-readers-") as tmp:
         return run_tests((lambda: test_vdb(simple, servermanager, args.vdb_writer, tmp),
                           lambda: test_gaussian_splats(simple, servermanager, tmp),
+                          lambda: test_capture_formats(simple, servermanager,
+                                                       args.capture_tools, tmp),
                           lambda: test_menus(simple, servermanager)))
 
 
