@@ -341,8 +341,42 @@ void Collect(const Json::Value& root, const Json::Value& index, const double par
 }
 
 
-// Turns a Gaussian (position, scale, rotation w first) by the affine `m`: the covariance
-// A R S^2 R^T A^T decomposed again. The spherical harmonics are left as they are (a rotated
+// The linear part of `m` as k times a rotation `r`, when it is one (no shear, no non-uniform
+// scale, no mirror).
+bool IsSimilarity(const double m[16], double r[3][3], double& k)
+{
+  double a[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      a[i][j] = m[4 * i + j];
+    }
+  }
+  k = std::cbrt(vtkMath::Determinant3x3(a));
+  if (!(k > 0.0))
+  {
+    return false;
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      r[i][j] = a[i][j] / k;
+      // Columns of a rotation are orthonormal: R^T R = I.
+      const double dot = (a[0][i] * a[0][j] + a[1][i] * a[1][j] + a[2][i] * a[2][j]) / (k * k);
+      if (std::abs(dot - (i == j ? 1.0 : 0.0)) > 1e-6)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// Turns a Gaussian (position, scale, rotation w first) by the affine `m`: a rotation and a
+// uniform scale compose with its own; any other linear part turns its covariance
+// A R S^2 R^T A^T, decomposed again. The spherical harmonics are left as they are (a rotated
 // node turns the shape, not the view-dependent colors).
 void Apply(const double m[16], float p[3], float s[3], float q[4])
 {
@@ -350,6 +384,24 @@ void Apply(const double m[16], float p[3], float s[3], float q[4])
   for (int i = 0; i < 3; ++i)
   {
     position[i] = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] + m[4 * i + 3];
+    p[i] = static_cast<float>(position[i]);
+  }
+  double node[3][3], k;
+  if (IsSimilarity(m, node, k))
+  {
+    double turn[4], product[4];
+    const double own[4] = { q[0], q[1], q[2], q[3] };
+    vtkMath::Matrix3x3ToQuaternion(node, turn);
+    vtkMath::MultiplyQuaternion(turn, own, product);
+    for (int i = 0; i < 4; ++i)
+    {
+      q[i] = static_cast<float>(product[i]);
+    }
+    for (int i = 0; i < 3; ++i)
+    {
+      s[i] = static_cast<float>(k * s[i]);
+    }
+    return;
   }
   double rotation[3][3], quaternion[4] = { q[0], q[1], q[2], q[3] };
   vtkMath::QuaternionToMatrix3x3(quaternion, rotation);
@@ -386,7 +438,6 @@ void Apply(const double m[16], float p[3], float s[3], float q[4])
   vtkMath::Matrix3x3ToQuaternion(vectors, quaternion);
   for (int i = 0; i < 3; ++i)
   {
-    p[i] = static_cast<float>(position[i]);
     s[i] = static_cast<float>(std::sqrt(std::max(values[i], 0.0)));
   }
   for (int i = 0; i < 4; ++i)

@@ -12,7 +12,9 @@
 //   k-means clusters (.sog) have no per-value bound (an outlier takes the nearest of 256
 //   values): their median error is held to the codebook's resolution, and the image decides;
 // - both drawn by vtkVolumeSplatMapper (CPU) from the same camera: PSNR at least the format's.
-// The writer's own round trip (write, read) must give back the kernels to float precision.
+// The .glb is also written again as .gltf files (external and data-URI buffers, a node
+// translation) that must read as the .glb does. The writer's own round trip (write, read) must
+// give back the kernels to float precision.
 // Sources: synthetic captures (the bench's torus) of SH degree 0 to 3, and with -D the shared
 // data's two real captures. Skips when the converters are absent.
 #include "SplatCaptureReference.h"
@@ -35,6 +37,8 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include <json/json.h>
+#include <vtksys/Base64.h>
 #include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
@@ -45,6 +49,8 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -316,6 +322,71 @@ std::vector<double> Draw(vtkPolyData* data, const splattest::CaptureView& view)
     mapper, data, view.Position.data(), view.FocalPoint.data(), view.Up.data(), 200)));
 }
 
+// The .glb written again as .gltf files: its buffer in a .bin beside, or inline as a data URI,
+// and with a node translation, which moves every Gaussian by it (in glTF's frame).
+void TestGLTFVariants(const std::string& glb, vtkPolyData* source, const std::string& work)
+{
+  std::ifstream in(glb, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::uint32_t jsonLength = 0, binLength = 0;
+  std::memcpy(&jsonLength, bytes.data() + 12, 4);
+  std::memcpy(&binLength, bytes.data() + 20 + jsonLength, 4);
+  const std::string binary = bytes.substr(28 + jsonLength, binLength);
+  Json::Value json;
+  std::istringstream text(bytes.substr(20, jsonLength));
+  Json::parseFromStream(Json::CharReaderBuilder(), text, &json, nullptr);
+  const std::string bin = work + "/variant.bin";
+  std::ofstream(bin, std::ios::binary) << binary;
+  std::string encoded(4 * binary.size() / 3 + 8, '\0');
+  encoded.resize(vtksysBase64_Encode(reinterpret_cast<const unsigned char*>(binary.data()),
+    binary.size(), reinterpret_cast<unsigned char*>(&encoded[0]), 0));
+
+  const double shift[3] = { 0.5, -0.25, 1.0 };
+  vtkNew<vtkPolyData> moved;
+  moved->DeepCopy(source);
+  for (vtkIdType i = 0; i < moved->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    moved->GetPoint(i, p);
+    // glTF's x and y are the negated INRIA ones.
+    moved->GetPoints()->SetPoint(i, p[0] - shift[0], p[1] - shift[1], p[2] + shift[2]);
+  }
+  struct Variant
+  {
+    const char* Name;
+    std::string URI;
+    bool Moved;
+  };
+  for (const Variant& variant : { Variant{ "gltf-bin", "variant.bin", false },
+         Variant{ "gltf-data-uri", "data:application/octet-stream;base64," + encoded, false },
+         Variant{ "gltf-translated", "variant.bin", true } })
+  {
+    Json::Value edited = json;
+    edited["buffers"][0]["uri"] = variant.URI;
+    if (variant.Moved)
+    {
+      for (double t : shift)
+      {
+        edited["nodes"][0]["translation"].append(t);
+      }
+    }
+    const std::string path = work + "/" + variant.Name + ".gltf";
+    std::ofstream(path) << Json::writeString(Json::StreamWriterBuilder(), edited);
+    int degree = -1;
+    vtkSmartPointer<vtkPolyData> data = Read(path, degree);
+    vtkPolyData* expected = variant.Moved ? moved.Get() : source;
+    Bounds exact{ 1e-6, 1e-5, 1e-6, 1e-6, 1e-6, 1e-6, 0.0 };
+    bool same = data->GetNumberOfPoints() == expected->GetNumberOfPoints();
+    for (const Errors& e : same ? Comparison(expected, data, exact, degree).Match() : std::vector<Errors>())
+    {
+      const auto v = e.Values();
+      same = same && std::all_of(v.begin(), v.end(), [](double x) { return x <= 1e-5; });
+    }
+    std::printf("%-28s %s\n", variant.Name, same ? "as the .glb" : "differs");
+    Check(same, std::string(variant.Name) + ": not the .glb's Gaussians");
+  }
+}
+
 void TestFormat(const std::string& sourcePath, vtkPolyData* source, int degree,
   const Format& format, const std::string& tools, const std::string& script,
   const std::string& work)
@@ -411,6 +482,10 @@ void TestFormat(const std::string& sourcePath, vtkPolyData* source, int degree,
   const splattest::CaptureView view = splattest::CaptureViews(center, radius).front();
   const double psnr = splattest::PSNR(Draw(source, view), Draw(data, view));
   std::printf(" PSNR %.1f dB\n", psnr);
+  if (format.Name == "glb" && stem == "torus-sh3")
+  {
+    TestGLTFVariants(converted, source, work);
+  }
   Check(psnr >= limits.MinPSNR,
     where + ": PSNR " + std::to_string(psnr) + " dB, below " + std::to_string(limits.MinPSNR));
 }
