@@ -52,13 +52,16 @@ Read ReadInChild(const std::string& path)
   if (pid == 0)
   {
     close(fds[0]);
-    const auto start = std::chrono::steady_clock::now();
-    vtkNew<vtkGaussianSplatReader> reader;
-    reader->SetFileName(path.c_str());
-    reader->Update();
     Read r;
-    r.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    r.Gaussians = reader->GetOutput()->GetNumberOfPoints();
+    if (!path.empty()) // an empty path measures the child's own start
+    {
+      const auto start = std::chrono::steady_clock::now();
+      vtkNew<vtkGaussianSplatReader> reader;
+      reader->SetFileName(path.c_str());
+      reader->Update();
+      r.Seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      r.Gaussians = reader->GetOutput()->GetNumberOfPoints();
+    }
     ssize_t written = write(fds[1], &r, sizeof(r));
     (void)written;
     _exit(0);

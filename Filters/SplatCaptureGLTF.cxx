@@ -15,6 +15,7 @@
 #include <vtksys/SystemTools.hxx>
 
 #include <cmath>
+#include <list>
 #include <sstream>
 
 namespace splatcapture
@@ -121,7 +122,7 @@ public:
     const Json::Value& accessor = At(this->Document["accessors"], index, "accessor");
     const Json::Value& bufferView = At(this->Document["bufferViews"], accessor["bufferView"], "bufferView");
     At(this->Document["buffers"], bufferView["buffer"], "buffer");
-    const std::vector<std::uint8_t>& buffer = this->Buffers[bufferView["buffer"].asUInt()];
+    const Buffer& buffer = this->Buffers[bufferView["buffer"].asUInt()];
     View view{};
     view.Type = static_cast<int>(Unsigned(accessor, "componentType", 0));
     const int size = view.Type == 5126 ? 4 : view.Type == 5123 || view.Type == 5122 ? 2
@@ -144,14 +145,14 @@ public:
     const std::uint64_t start = Unsigned(accessor, "byteOffset", 0);
     // Compared by division: a corrupt count or stride must not overflow the product.
     if (view.Stride < element || view.Stride > (std::uint64_t(1) << 32) || start > length ||
-      Unsigned(bufferView, "byteOffset", 0) > buffer.size() ||
-      length > buffer.size() - Unsigned(bufferView, "byteOffset", 0) ||
+      Unsigned(bufferView, "byteOffset", 0) > buffer.Size ||
+      length > buffer.Size - Unsigned(bufferView, "byteOffset", 0) ||
       (view.Count && (length - start < element ||
         view.Count - 1 > (length - start - element) / view.Stride)))
     {
       Corrupt("an accessor of " + std::to_string(view.Count) + " elements does not fit its buffer");
     }
-    view.Data = buffer.data() + offset;
+    view.Data = buffer.Data + offset;
     return view;
   }
 
@@ -159,17 +160,18 @@ private:
   void LoadBuffer(const Json::Value& buffer, const std::string& folder)
   {
     const std::uint64_t length = Unsigned(buffer, "byteLength", 0);
-    std::vector<std::uint8_t> bytes;
     if (!buffer.isMember("uri"))
     {
+      // The GLB's binary chunk, read in place.
       if (!this->Binary || this->BinarySize < length)
       {
         Corrupt("a buffer of " + std::to_string(length) + " bytes has no data in the GLB");
       }
-      bytes.assign(this->Binary, this->Binary + length);
+      this->Buffers.push_back({ this->Binary, static_cast<std::size_t>(length) });
     }
     else
     {
+      std::vector<std::uint8_t> bytes;
       const std::string uri = buffer["uri"].asString();
       const std::size_t comma = uri.find(',');
       if (uri.rfind("data:", 0) == 0 && comma != std::string::npos)
@@ -193,15 +195,24 @@ private:
           "a buffer has " + std::to_string(bytes.size()) + " of its " + std::to_string(length) +
             " bytes");
       }
+      this->Owned.push_back(std::move(bytes));
+      this->Buffers.push_back({ this->Owned.back().data(), this->Owned.back().size() });
     }
-    this->Buffers.push_back(std::move(bytes));
   }
 
   std::vector<std::uint8_t> File;
   const std::uint8_t* Binary = nullptr;
   std::size_t BinarySize = 0;
   Json::Value Document;
-  std::vector<std::vector<std::uint8_t>> Buffers;
+  // The buffers' bytes: in the GLB file, or read from their URIs into Owned (a list, so that
+  // the bytes stay where they are as it grows).
+  struct Buffer
+  {
+    const std::uint8_t* Data;
+    std::size_t Size;
+  };
+  std::vector<Buffer> Buffers;
+  std::list<std::vector<std::uint8_t>> Owned;
 };
 
 // Component c of element i, as a float (normalized integers mapped as glTF defines).

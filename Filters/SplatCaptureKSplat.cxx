@@ -7,7 +7,9 @@
 
 #include "vtkErrorCode.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace splatcapture
@@ -133,77 +135,85 @@ void ReadKSplat(const std::string& fileName, vtkPolyData* output, const Progress
     const std::uint8_t* records =
       data.Take(record * section.Capacity, "Gaussians");
     const float unit = section.BlockSize / 2.0f / static_cast<float>(section.ScaleRange);
-    // Full buckets first, then the partial ones in order.
-    const auto bucketSize = [&](std::uint64_t b) -> std::uint64_t
+    // The end of each bucket's Gaussians: full buckets first, then the partial ones in order.
+    std::vector<std::uint64_t> bucketEnds;
+    for (std::uint64_t b = 0, end = 0; level > 0 && b < section.Buckets; ++b)
     {
-      return b < section.FullBuckets ? section.BucketSize
+      end += b < section.FullBuckets ? section.BucketSize
         : b - section.FullBuckets < partial.size() ? partial[b - section.FullBuckets]
                                                    : 0;
-    };
-    std::uint64_t bucket = 0, bucketEnd = bucketSize(0);
-    for (std::uint32_t j = 0; j < section.Count; ++j, ++next)
-    {
-      while (level > 0 && j >= bucketEnd)
-      {
-        if (++bucket >= section.Buckets)
-        {
-          throw ReadError(vtkErrorCode::FileFormatError,
-            "section " + std::to_string(s) + " has more Gaussians than its buckets hold");
-        }
-        bucketEnd += bucketSize(bucket);
-      }
-      Bytes in(records + record * j, record, "a Gaussian");
-      float p[3], scale[3], q[4];
-      if (level == 0)
-      {
-        for (float& v : p)
-        {
-          v = in.Read<float>("position");
-        }
-        for (float& v : scale)
-        {
-          v = in.Read<float>("scale");
-        }
-        for (float& v : q)
-        {
-          v = in.Read<float>("rotation");
-        }
-      }
-      else
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          float center;
-          std::memcpy(&center, centers + section.BucketBytes * bucket + 4 * a, 4);
-          const int u = in.Read<std::uint16_t>("position");
-          p[a] = (u - static_cast<float>(section.ScaleRange)) * unit + center;
-        }
-        for (float& v : scale)
-        {
-          v = HalfToFloat(in.Read<std::uint16_t>("scale"));
-        }
-        for (float& v : q)
-        {
-          v = HalfToFloat(in.Read<std::uint16_t>("rotation"));
-        }
-      }
-      kernels.SetPosition(next, p[0], p[1], p[2]);
-      kernels.SetScale(next, scale[0], scale[1], scale[2]);
-      kernels.SetRotation(next, q[0], q[1], q[2], q[3]);
-      const std::uint8_t* rgba = in.Take(4, "color");
-      kernels.SetColor(next, rgba[0] / 255.0f, rgba[1] / 255.0f, rgba[2] / 255.0f);
-      kernels.SetOpacity(next, rgba[3] / 255.0f);
-      for (int i = 0; i < rest; ++i)
-      {
-        const float value = level == 0 ? in.Read<float>("coefficients")
-          : level == 1
-          ? HalfToFloat(in.Read<std::uint16_t>("coefficients"))
-          : shMin + in.Read<std::uint8_t>("coefficients") / 255.0f * (shMax - shMin);
-        int k, channel;
-        Coefficient(i, k, channel);
-        kernels.SetRest(next, k, channel, value);
-      }
+      bucketEnds.push_back(end);
     }
+    if (level > 0 && (bucketEnds.empty() || bucketEnds.back() < section.Count))
+    {
+      throw ReadError(vtkErrorCode::FileFormatError,
+        "section " + std::to_string(s) + " has more Gaussians than its buckets hold");
+    }
+    const vtkIdType first = next;
+    vtkSMPTools::For(0, section.Count,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType j = begin; j < end; ++j)
+        {
+          const vtkIdType at = first + j;
+          const auto bucket = level > 0 ? std::upper_bound(bucketEnds.begin(), bucketEnds.end(),
+                                            static_cast<std::uint64_t>(j)) -
+              bucketEnds.begin()
+                                        : 0;
+          Bytes in(records + record * j, record, "a Gaussian");
+          float p[3], scale[3], q[4];
+          if (level == 0)
+          {
+            for (float& v : p)
+            {
+              v = in.Read<float>("position");
+            }
+            for (float& v : scale)
+            {
+              v = in.Read<float>("scale");
+            }
+            for (float& v : q)
+            {
+              v = in.Read<float>("rotation");
+            }
+          }
+          else
+          {
+            for (int a = 0; a < 3; ++a)
+            {
+              float center;
+              std::memcpy(&center, centers + section.BucketBytes * bucket + 4 * a, 4);
+              const int u = in.Read<std::uint16_t>("position");
+              p[a] = (u - static_cast<float>(section.ScaleRange)) * unit + center;
+            }
+            for (float& v : scale)
+            {
+              v = HalfToFloat(in.Read<std::uint16_t>("scale"));
+            }
+            for (float& v : q)
+            {
+              v = HalfToFloat(in.Read<std::uint16_t>("rotation"));
+            }
+          }
+          kernels.SetPosition(at, p[0], p[1], p[2]);
+          kernels.SetScale(at, scale[0], scale[1], scale[2]);
+          kernels.SetRotation(at, q[0], q[1], q[2], q[3]);
+          const std::uint8_t* rgba = in.Take(4, "color");
+          kernels.SetColor(at, rgba[0] / 255.0f, rgba[1] / 255.0f, rgba[2] / 255.0f);
+          kernels.SetOpacity(at, rgba[3] / 255.0f);
+          for (int i = 0; i < rest; ++i)
+          {
+            const float value = level == 0 ? in.Read<float>("coefficients")
+              : level == 1
+              ? HalfToFloat(in.Read<std::uint16_t>("coefficients"))
+              : shMin + in.Read<std::uint8_t>("coefficients") / 255.0f * (shMax - shMin);
+            int k, channel;
+            Coefficient(i, k, channel);
+            kernels.SetRest(at, k, channel, value);
+          }
+        }
+      });
+    next += section.Count;
     progress(static_cast<double>(s + 1) / sections);
   }
   kernels.MoveTo(output);
