@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <sys/stat.h>
 
@@ -25,6 +26,23 @@ namespace splattest
 {
 /// CTest's SKIP_RETURN_CODE for tests whose optional data is absent.
 constexpr int SkipReturnCode = 125;
+
+/// The number of checks that failed so far (Check counts them).
+inline int& Failures()
+{
+  static int failures = 0;
+  return failures;
+}
+
+/// Prints "FAILED: what" and counts a failure when `ok` is false.
+inline void Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::fprintf(stderr, "FAILED: %s\n", what.c_str());
+    ++Failures();
+  }
+}
 
 inline vtkSmartPointer<vtkRenderWindow> MakeRenderWindow(int width, int height)
 {

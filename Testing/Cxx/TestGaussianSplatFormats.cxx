@@ -56,16 +56,7 @@
 
 namespace
 {
-int failures = 0;
-
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::fprintf(stderr, "FAILED: %s\n", what.c_str());
-    ++failures;
-  }
-}
+using splattest::Check;
 
 constexpr double C0 = 0.28209479177387814;
 constexpr double Huge = 1e30;
@@ -547,7 +538,7 @@ int main(int argc, char* argv[])
   if (tools.empty() || !splattest::FileExists(tools + "/node_modules/.bin/splat-transform"))
   {
     std::printf("the converters are absent (%s): only the writer was tested\n", tools.c_str());
-    return failures ? 1 : splattest::SkipReturnCode;
+    return splattest::Failures() ? 1 : splattest::SkipReturnCode;
   }
   for (const std::string& path : sources)
   {
@@ -558,5 +549,5 @@ int main(int argc, char* argv[])
       TestFormat(path, source, degree, format, tools, script, work);
     }
   }
-  return failures == 0 ? 0 : 1;
+  return splattest::Failures() == 0 ? 0 : 1;
 }

@@ -30,15 +30,7 @@
 
 namespace
 {
-int failures = 0;
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::fprintf(stderr, "FAILED: %s\n", what.c_str());
-    ++failures;
-  }
-}
+using splattest::Check;
 
 constexpr double C0 = 0.28209479177387814;
 constexpr int Count = 6;
@@ -317,5 +309,5 @@ int main(int argc, char* argv[])
     Check(code != vtkErrorCode::NoError && data->GetNumberOfPoints() == 0 && degree == -1,
       path + " gives an error and no points");
   }
-  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  return splattest::Failures() ? EXIT_FAILURE : EXIT_SUCCESS;
 }

@@ -32,15 +32,7 @@
 
 namespace
 {
-int failures = 0;
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::fprintf(stderr, "FAILED: %s\n", what.c_str());
-    ++failures;
-  }
-}
+using splattest::Check;
 
 using splattest::PLYElement;
 
@@ -276,7 +268,7 @@ int CompareBunny(const std::string& path)
   Check(expected->GetNumberOfPoints() == data->GetNumberOfPoints() &&
       expected->GetNumberOfPolys() == data->GetNumberOfPolys(),
     "the counts of vtkPLYReader");
-  if (failures)
+  if (splattest::Failures())
   {
     return EXIT_FAILURE;
   }
@@ -302,7 +294,7 @@ int CompareBunny(const std::string& path)
     Check(data->GetPointData()->GetArray(name) != nullptr,
       std::string("the vertex property '") + name + "' as an array");
   }
-  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  return splattest::Failures() ? EXIT_FAILURE : EXIT_SUCCESS;
 }
 }
 
@@ -338,5 +330,5 @@ int main(int argc, char* argv[])
   Check(progress.size() >= 3 && progress.front() == 0.0 && progress.back() == 1.0 &&
       std::is_sorted(progress.begin(), progress.end()),
     "progress events rising from 0 to 1");
-  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  return splattest::Failures() ? EXIT_FAILURE : EXIT_SUCCESS;
 }

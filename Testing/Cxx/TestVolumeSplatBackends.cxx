@@ -28,16 +28,7 @@ namespace
 {
 constexpr int Size = 256;
 const char* const ModeNames[4] = { "blended", "clipped", "single axis", "depth sorted" };
-int failures = 0;
-
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::fprintf(stderr, "FAILED: %s\n", what.c_str());
-    ++failures;
-  }
-}
+using splattest::Check;
 
 struct Scene
 {
@@ -336,5 +327,5 @@ int main(int, char*[])
       "the square in front hides the volume in both backends");
     Check(openGL[middle] > 0.5, "the volume shows in front of the square behind it");
   }
-  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+  return splattest::Failures() ? EXIT_FAILURE : EXIT_SUCCESS;
 }

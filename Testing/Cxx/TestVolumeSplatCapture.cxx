@@ -43,16 +43,7 @@
 namespace
 {
 constexpr int Size = 320;
-int failures = 0;
-
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::fprintf(stderr, "FAILED: %s\n", what.c_str());
-    ++failures;
-  }
-}
+using splattest::Check;
 
 struct Rendered
 {
@@ -184,5 +175,5 @@ int main(int argc, char* argv[])
   {
     TestCapture(capture);
   }
-  return failures == 0 ? 0 : 1;
+  return splattest::Failures() == 0 ? 0 : 1;
 }
