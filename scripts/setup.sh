@@ -1,37 +1,35 @@
 #!/usr/bin/env bash
 # Idempotent set-up of a Debian 12 (bookworm) machine for building and testing Splat.
 #
-#   scripts/setup.sh            install what is missing; does nothing when all is present
-#   SPLAT_DEPS_DIR=DIR          where the python3-paraview and python3-vtk9 packages are cached,
-#                               and python3-paraview unpacked
-#                               (default: build/deps in the repository; build/ is ignored by git)
+#   scripts/setup.sh [vtk|paraview|test]
+#       vtk       what the VTK modules, the examples and the Python package need (./splat demo,
+#                 bench, report, python, build vtk)
+#       paraview  vtk, plus ParaView 5.11 for the plugin (./splat build paraview|all)
+#       test      paraview, plus the converters the capture format tests compare against
+#                 (./splat test; the default)
+#   SPLAT_DEPS_DIR=DIR   where the private ParaView files go (default: build/deps in the
+#                        repository; build/ is ignored by git)
 #
-# 1. Installs the missing apt packages (sudo only when not root).
-# 2. ParaView's Python modules: Debian's python3-paraview conflicts with python3-vtk9 (which
-#    libvtk9-dev needs). find_package(ParaView) checks that its imported targets' files exist:
-#    /usr/bin/pvpython and the extension modules vtkmodules/*.so and paraview/modules/*.so, none
-#    of which python3-vtk9 has (VTK 9.1's are *.cpython-311-x86_64-linux-gnu.so). So the package
-#    is downloaded and force-installed with dpkg --force-conflicts --force-overwrite, and a copy
-#    is unpacked under SPLAT_DEPS_DIR for pvpython's PYTHONPATH (see /work/shared/ENVIRONMENT.md).
-# 3. The two packages do share 38 pure-Python files (vtk.py, vtkmodules/__init__.py, all.py,
-#    util/, ...): the force-install overwrites VTK 9.1's, which breaks /usr/bin/python3's
-#    `import vtk`. python3-vtk9's own .deb is then installed again over them, so that the system
-#    VTK's Python works and dpkg's database says which package owns each file. pvpython does not
-#    need ParaView's copies: its PYTHONPATH holds the unpacked package.
-# 4. The converters the capture format tests compare the readers against (npm, pinned):
-#    PlayCanvas's splat-transform and GaussianSplats3D (.ksplat), under
-#    SPLAT_DEPS_DIR/capture-tools; skipped with a note where the machine has no npm (those tests
-#    then skip).
-# While python3-paraview is force-installed apt refuses to install anything else, so when a
-# package is missing it is removed first (dpkg --remove; the shared files stay with
-# python3-vtk9), then everything is installed and steps 2 and 3 run again.
+# The set-up leaves apt and dpkg consistent: it installs packages with apt-get only and forces
+# nothing (scripts/check-system.sh tests that; docs/setup.md says why it is done this way).
+#
+# ParaView: find_package(ParaView) checks that the files of its Python targets exist (pvpython,
+# the extension modules under dist-packages/vtkmodules and paraview/modules), which Debian ships
+# in python3-paraview. That package conflicts with python3-vtk9, which the system VTK's Python
+# (and Splat's Python package) needs, so it is not installed. Instead:
+#   1. its .deb is downloaded (apt-get download) and unpacked under SPLAT_DEPS_DIR;
+#   2. a private copy of ParaView's CMake package is made there, whose imported targets point at
+#      the system's files in /usr, except the Python ones, which point at the unpacked package;
+#   3. SPLAT_DEPS_DIR/bin/pvpython runs the unpacked pvpython with its own modules first.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 DEPS_DIR="${SPLAT_DEPS_DIR:-$ROOT/build/deps}"
 PV_PY_DIR="$DEPS_DIR/python3-paraview"
+PV_CMAKE_DIR="$DEPS_DIR/paraview-cmake"
+PROFILE="${1:-test}"
 
-PACKAGES=(
+VTK_PACKAGES=(
   # toolchain
   cmake g++ gcc make pkg-config libgtest-dev python3
   # VTK 9.1, OpenVDB, OpenImageIO, GLM, Eigen
@@ -41,15 +39,19 @@ PACKAGES=(
   zlib1g-dev libzstd-dev libminizip-dev libwebp-dev libjsoncpp-dev
   # offscreen OpenGL (Mesa llvmpipe) under a virtual X server
   xvfb xauth libgl1-mesa-dri mesa-utils
+  # real data used by the examples and tests
+  mricron-data libcgal-demo
+)
+PARAVIEW_PACKAGES=(
   # ParaView 5.11 and what its CMake package asks for
   paraview paraview-dev qtbase5-dev qttools5-dev libqt5opengl5-dev libqt5svg5-dev
   # xmlpatterns: the plugin build turns its server-manager XML into ParaView help pages
   qtxmlpatterns5-dev-tools
-  # real data used by the examples and tests
-  mricron-data libcgal-demo
 )
+CAPTURE_TOOLS=(@playcanvas/splat-transform@3.7.0 @mkkellogg/gaussian-splats-3d@0.4.7 three@0.160.0)
 
 log() { printf 'setup: %s\n' "$*" >&2; }
+die() { printf 'setup: error: %s\n' "$*" >&2; exit 1; }
 # Runs a command with its output kept in $DEPS_DIR/setup.log; shows the log's end on failure.
 quietly() {
   mkdir -p "$DEPS_DIR"
@@ -58,15 +60,19 @@ quietly() {
     die "failed: $*"
   fi
 }
-die() { printf 'setup: error: %s\n' "$*" >&2; exit 1; }
+
+case "$PROFILE" in
+  vtk) packages=("${VTK_PACKAGES[@]}") ;;
+  paraview|test) packages=("${VTK_PACKAGES[@]}" "${PARAVIEW_PACKAGES[@]}") ;;
+  *) die "unknown profile '$PROFILE' (vtk, paraview or test)" ;;
+esac
 
 SUDO=()
 if [ "$(id -u)" -ne 0 ]; then
   command -v sudo >/dev/null 2>&1 || die "not root and sudo is not available"
   SUDO=(sudo)
 fi
-APT=("${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -y -q
-     -o Dpkg::Options::=--force-confdef -o Dpkg::Options::=--force-confold)
+APT=("${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -y -q)
 
 # Prints "installed" for an installed package, nothing otherwise.
 pkg_status() { dpkg-query -W -f='${db:Status-Status}' "$1" 2>/dev/null || true; }
@@ -82,23 +88,36 @@ apt_update() {
   fi
 }
 
-# --- 1. apt packages ------------------------------------------------------------------------
-missing=()
-while read -r name status; do
-  [ "$status" = installed ] || missing+=("$name")
-done < <(for p in "${PACKAGES[@]}"; do printf '%s %s\n' "$p" "$(pkg_status "$p")"; done)
+# --- apt packages -----------------------------------------------------------------------------
+if [ "$(pkg_status python3-paraview)" = installed ]; then
+  if [ "$(pkg_status python3-vtk9)" = installed ]; then
+    # Only a forced install (earlier versions of this script did one) puts the two conflicting
+    # packages side by side, and apt then refuses every install. python3-paraview is removed;
+    # the files the two share belong to python3-vtk9 since then and are reinstalled to be sure.
+    log "repairing apt: removing python3-paraview, force-installed next to python3-vtk9" \
+        "by an earlier set-up (Splat uses a private copy of it)"
+    quietly "${SUDO[@]}" dpkg --remove python3-paraview
+    apt_update
+    quietly "${APT[@]}" install --reinstall python3-vtk9
+  else
+    die "python3-paraview is installed; it conflicts with python3-vtk9, which Splat needs." \
+        "Remove it (apt-get remove python3-paraview): Splat's ParaView build uses a private copy."
+  fi
+fi
 
+missing=()
+for p in "${packages[@]}"; do
+  [ "$(pkg_status "$p")" = installed ] || missing+=("$p")
+done
 if [ "${#missing[@]}" -gt 0 ]; then
   log "installing missing packages: ${missing[*]}"
-  if [ "$(pkg_status python3-paraview)" = installed ]; then
-    log "removing the force-installed python3-paraview so that apt accepts new installs"
-    quietly "${SUDO[@]}" dpkg --remove python3-paraview
-  fi
   apt_update
   "${APT[@]}" install --no-install-recommends "${missing[@]}" >&2
 fi
 
-# --- 2. python3-paraview --------------------------------------------------------------------
+[ "$PROFILE" = vtk ] && exit 0
+
+# --- ParaView's Python package, unpacked --------------------------------------------------------
 pv_version="$(pkg_version paraview)"
 [ -n "$pv_version" ] || die "paraview is not installed"
 
@@ -136,49 +155,79 @@ fetch_deb() {
   find_cached_deb "$1" "$2" || die "$1=$2 download not found"
 }
 
-need_deb=0
-[ "$(pkg_status python3-paraview)" = installed ] \
-  && [ "$(pkg_version python3-paraview)" = "$pv_version" ] || need_deb=1
-[ "$(cat "$PV_PY_DIR/.version" 2>/dev/null || true)" = "$pv_version" ] || need_deb=1
+stamp() { cat "$1/.version" 2>/dev/null || true; }
 
-if [ "$need_deb" -eq 1 ]; then
+if [ "$(stamp "$PV_PY_DIR")" != "$pv_version" ]; then
   fetch_deb python3-paraview "$pv_version"
-  pv_deb="$deb"
-
-  if [ "$(pkg_status python3-paraview)" != installed ] \
-     || [ "$(pkg_version python3-paraview)" != "$pv_version" ]; then
-    log "force-installing python3-paraview over the conflict with python3-vtk9"
-    quietly "${SUDO[@]}" dpkg -i --force-conflicts --force-overwrite "$pv_deb"
-  fi
-
-  if [ "$(cat "$PV_PY_DIR/.version" 2>/dev/null || true)" != "$pv_version" ]; then
-    log "unpacking python3-paraview into $PV_PY_DIR"
-    rm -rf "$PV_PY_DIR"
-    mkdir -p "$PV_PY_DIR"
-    dpkg-deb -x "$pv_deb" "$PV_PY_DIR"
-    printf '%s\n' "$pv_version" > "$PV_PY_DIR/.version"
-  fi
+  log "unpacking python3-paraview into $PV_PY_DIR"
+  rm -rf "$PV_PY_DIR"
+  mkdir -p "$PV_PY_DIR"
+  dpkg-deb -x "$deb" "$PV_PY_DIR"
+  printf '%s\n' "$pv_version" > "$PV_PY_DIR/.version"
 fi
-
-[ -d "$PV_PY_DIR/usr/lib/python3/dist-packages/paraview" ] \
+pv_site="$PV_PY_DIR/usr/lib/python3/dist-packages"
+[ -f "$pv_site/paraview/simple.py" ] && [ -x "$PV_PY_DIR/usr/bin/pvpython" ] \
   || die "unpacked python3-paraview is incomplete: $PV_PY_DIR"
 
-# --- 3. python3-vtk9's own pure-Python files back over ParaView's ----------------------------
-vtk_py_init=/usr/lib/python3/dist-packages/vtkmodules/__init__.py
-if [ "$(dpkg-query -S "$vtk_py_init" 2>/dev/null | cut -d: -f1)" != python3-vtk9 ]; then
-  vtk_version="$(pkg_version python3-vtk9)"
-  [ -n "$vtk_version" ] || die "python3-vtk9 is not installed"
-  fetch_deb python3-vtk9 "$vtk_version"
-  log "installing python3-vtk9's own files again over python3-paraview's"
-  quietly "${SUDO[@]}" dpkg -i --force-conflicts --force-overwrite "$deb"
-  /usr/bin/python3 -c "import vtk" >/dev/null 2>&1 \
-    || die "/usr/bin/python3 still cannot import vtk after reinstalling python3-vtk9"
+pv_config="$(dpkg -L paraview-dev | grep -m1 '/cmake/paraview-[0-9.]*/paraview-config.cmake$')" \
+  || die "paraview-dev has no paraview-config.cmake"
+pv_cmake_src="$(dirname "$pv_config")"
+# ParaView's libraries, /usr/lib/<multiarch>
+pv_libdir="$(dirname "$(dirname "$pv_cmake_src")")"
+
+# pvpython. ParaView's libraries are named by their /usr path so that VTK's search for its
+# Python modules (relative to the library) does not put VTK 9.1's, in /usr/lib/python3, first.
+mkdir -p "$DEPS_DIR/bin"
+cat > "$DEPS_DIR/bin/pvpython.tmp" <<EOF
+#!/bin/sh
+# ParaView $pv_version's pvpython from the unpacked python3-paraview (written by scripts/setup.sh).
+PYTHONPATH="$pv_site\${PYTHONPATH:+:\$PYTHONPATH}" \\
+LD_LIBRARY_PATH="$pv_libdir\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}" \\
+  exec "$PV_PY_DIR/usr/bin/pvpython" "\$@"
+EOF
+chmod +x "$DEPS_DIR/bin/pvpython.tmp"
+if cmp -s "$DEPS_DIR/bin/pvpython.tmp" "$DEPS_DIR/bin/pvpython"; then
+  rm "$DEPS_DIR/bin/pvpython.tmp"
+else
+  mv "$DEPS_DIR/bin/pvpython.tmp" "$DEPS_DIR/bin/pvpython"
 fi
 
-# --- 4. The converters of the capture format tests -----------------------------------------
-CAPTURE_TOOLS=(@playcanvas/splat-transform@3.7.0 @mkkellogg/gaussian-splats-3d@0.4.7 three@0.160.0)
+# --- ParaView's CMake package, private copy ---------------------------------------------------
+pv_cmake="$PV_CMAKE_DIR/$(basename "$pv_cmake_src")"
+if [ "$(stamp "$PV_CMAKE_DIR")" != "$pv_version $PV_PY_DIR" ]; then
+  log "writing a private copy of ParaView's CMake package into $pv_cmake"
+  rm -rf "$PV_CMAKE_DIR"
+  mkdir -p "$PV_CMAKE_DIR"
+  cp -r "$pv_cmake_src" "$pv_cmake"
+  # Each file computes the install prefix from its own location: compute it from the original's,
+  # then send the files of python3-paraview (pvpython, the Python modules, the wrapping
+  # hierarchies) to the unpacked copy.
+  pv_py_rules=()
+  for prefix in _IMPORT_PREFIX _vtk_module_import_prefix; do
+    for path in bin/pvpython lib/python3/dist-packages/ "${pv_libdir#/usr/}/vtk/hierarchy/"; do
+      pv_py_rules+=(-e "s|\${$prefix}/$path|$PV_PY_DIR/usr/$path|g")
+    done
+  done
+  while IFS= read -r -d '' f; do
+    orig_dir="$(dirname "$pv_cmake_src${f#"$pv_cmake"}")"
+    sed -i \
+      -e "s|get_filename_component(_IMPORT_PREFIX \"\${CMAKE_CURRENT_LIST_FILE}\" PATH)|set(_IMPORT_PREFIX \"$orig_dir\")|" \
+      -e "s|set(_vtk_module_import_prefix \"\${CMAKE_CURRENT_LIST_DIR}\")|set(_vtk_module_import_prefix \"$orig_dir\")|" \
+      -e "s|get_filename_component(PACKAGE_PREFIX_DIR \"\${CMAKE_CURRENT_LIST_DIR}/|get_filename_component(PACKAGE_PREFIX_DIR \"$orig_dir/|" \
+      "${pv_py_rules[@]}" "$f"
+  done < <(find "$pv_cmake" -name '*.cmake' -print0)
+  if grep -rlq -e '_IMPORT_PREFIX "${CMAKE_CURRENT_LIST_FILE}"' \
+       -e '_vtk_module_import_prefix "${CMAKE_CURRENT_LIST_DIR}"' "$pv_cmake"; then
+    die "ParaView's CMake package computes its prefix in a way this script does not know"
+  fi
+  printf '%s\n' "$pv_version $PV_PY_DIR" > "$PV_CMAKE_DIR/.version"
+fi
+
+[ "$PROFILE" = paraview ] && exit 0
+
+# --- The converters of the capture format tests -------------------------------------------------
 TOOLS_DIR="$DEPS_DIR/capture-tools"
-if [ "$(cat "$TOOLS_DIR/.version" 2>/dev/null || true)" != "${CAPTURE_TOOLS[*]}" ]; then
+if [ "$(stamp "$TOOLS_DIR")" != "${CAPTURE_TOOLS[*]}" ]; then
   if command -v npm >/dev/null 2>&1; then
     log "installing ${CAPTURE_TOOLS[*]} into $TOOLS_DIR"
     rm -rf "$TOOLS_DIR"
