@@ -18,7 +18,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
-#include "vtkSMPThreadLocalObject.h"
 #include "vtkSMPTools.h"
 #include "vtkStaticPointLocator.h"
 
@@ -240,11 +239,11 @@ void vtkSurfelGenerator::NeighborRadii(
   locator->BuildLocator();
   const int k = static_cast<int>(std::min<vtkIdType>(this->NumberOfNeighbors, count - 1));
   const double scale = this->RadiusScale;
-  vtkSMPThreadLocalObject<vtkIdList> neighborLists;
   vtkSMPTools::For(0, count,
     [&](vtkIdType begin, vtkIdType end)
     {
-      vtkIdList* neighbors = neighborLists.Local();
+      // One list per range of points (a few per thread) rather than per thread.
+      vtkNew<vtkIdList> neighbors;
       for (vtkIdType j = begin; j < end; ++j)
       {
         double p[3], q[3];

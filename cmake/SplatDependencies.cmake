@@ -6,7 +6,10 @@ set(splat_vtk_components
   IOCore IOGeometry IOLegacy IOPLY IOXML IOImage
   ImagingCore InteractionStyle
   RenderingCore RenderingOpenGL2 RenderingFreeType RenderingVolume RenderingVolumeOpenGL2
-  TestingRendering)
+  TestingRendering
+  # Found here, not only where the examples use it: VTK 9.3's VTK::jsoncpp names the external
+  # JsonCpp::JsonCpp, an imported target visible only below the directory that found it.
+  jsoncpp)
 
 if (SPLAT_BUILD_PARAVIEW_PLUGIN)
   find_package(ParaView 5.11 REQUIRED)

@@ -30,6 +30,7 @@ Any failure exits non-zero.
 import argparse
 import math
 import os
+import shutil
 import struct
 import subprocess
 import sys
@@ -342,8 +343,8 @@ def test_capture_formats(simple, servermanager, tools, tmp):
     """The compressed formats, converted from the 4-Gaussian capture by splat-transform when it is
     installed: each opens with Gaussian Splat Reader and reads the 4 Gaussians."""
     st = os.path.join(tools or "", "node_modules", ".bin", "splat-transform")
-    if not os.path.isfile(st):
-        print("the capture converters are absent (%s): formats not tested" % tools)
+    if not os.path.isfile(st) or shutil.which("node") is None:
+        print("the capture converters or Node.js are absent (%s): formats not tested" % tools)
         return
     capture = os.path.join(tmp, "formats.ply")
     write_capture(capture, 4)
