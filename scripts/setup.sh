@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Idempotent set-up of a Debian 12 (bookworm) machine for building and testing Splat.
+# Idempotent set-up of a Debian 12 (bookworm) machine for building and testing Splat, or of the
+# Debian 13 (trixie) root of its second test leg.
 #
 #   scripts/setup.sh [vtk|paraview|test]
 #       vtk       what the VTK modules, the examples and the Python package need (./splat demo,
 #                 bench, report, python, build vtk)
 #       paraview  vtk, plus ParaView 5.11 for the plugin (./splat build paraview|all)
-#       test      paraview, plus the converters the capture format tests compare against
-#                 (./splat test; the default)
+#       test      paraview, plus debootstrap (the Debian 13 test leg, scripts/debian13.sh) and the
+#                 converters the capture format tests compare against (./splat test; the default)
 #   SPLAT_DEPS_DIR=DIR   where the private ParaView files go (default: build/deps in the
 #                        repository; build/ is ignored by git)
 #
@@ -42,11 +43,19 @@ VTK_PACKAGES=(
   # real data used by the examples and tests
   mricron-data libcgal-demo
 )
-PARAVIEW_PACKAGES=(
-  # ParaView 5.11 and what its CMake package asks for
-  paraview paraview-dev qtbase5-dev qttools5-dev libqt5opengl5-dev libqt5svg5-dev
-  # xmlpatterns: the plugin build turns its server-manager XML into ParaView help pages
-  qtxmlpatterns5-dev-tools
+# ParaView and the Qt its CMake package asks for: Debian 12's ParaView 5.11 is built with Qt 5,
+# Debian 13's 5.13 (the second test leg, scripts/debian13.sh) with Qt 6.
+PARAVIEW_PACKAGES=(paraview paraview-dev)
+if [ "$(. /etc/os-release && echo "${VERSION_CODENAME:-}")" = bookworm ]; then
+  PARAVIEW_PACKAGES+=(qtbase5-dev qttools5-dev libqt5opengl5-dev libqt5svg5-dev
+    # xmlpatterns: the plugin build turns its server-manager XML into ParaView help pages
+    qtxmlpatterns5-dev-tools)
+else
+  PARAVIEW_PACKAGES+=(qt6-base-dev qt6-5compat-dev qt6-tools-dev qt6-svg-dev)
+fi
+TEST_PACKAGES=(
+  # the Debian 13 root of the second test leg (scripts/debian13.sh)
+  debootstrap
 )
 CAPTURE_TOOLS=(@playcanvas/splat-transform@3.7.0 @mkkellogg/gaussian-splats-3d@0.4.7 three@0.160.0)
 
@@ -63,7 +72,8 @@ quietly() {
 
 case "$PROFILE" in
   vtk) packages=("${VTK_PACKAGES[@]}") ;;
-  paraview|test) packages=("${VTK_PACKAGES[@]}" "${PARAVIEW_PACKAGES[@]}") ;;
+  paraview) packages=("${VTK_PACKAGES[@]}" "${PARAVIEW_PACKAGES[@]}") ;;
+  test) packages=("${VTK_PACKAGES[@]}" "${PARAVIEW_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
   *) die "unknown profile '$PROFILE' (vtk, paraview or test)" ;;
 esac
 
@@ -169,8 +179,10 @@ pv_site="$PV_PY_DIR/usr/lib/python3/dist-packages"
 [ -f "$pv_site/paraview/simple.py" ] && [ -x "$PV_PY_DIR/usr/bin/pvpython" ] \
   || die "unpacked python3-paraview is incomplete: $PV_PY_DIR"
 
-pv_config="$(dpkg -L paraview-dev | grep -m1 '/cmake/paraview-[0-9.]*/paraview-config.cmake$')" \
+# (grep reads the whole list: stopping early would fail dpkg's write under pipefail)
+pv_config="$(dpkg -L paraview-dev | grep '/cmake/paraview-[0-9.]*/paraview-config.cmake$')" \
   || die "paraview-dev has no paraview-config.cmake"
+pv_config="${pv_config%%$'\n'*}"
 pv_cmake_src="$(dirname "$pv_config")"
 # ParaView's libraries, /usr/lib/<multiarch>
 pv_libdir="$(dirname "$(dirname "$pv_cmake_src")")"
@@ -194,7 +206,9 @@ fi
 
 # --- ParaView's CMake package, private copy ---------------------------------------------------
 pv_cmake="$PV_CMAKE_DIR/$(basename "$pv_cmake_src")"
-if [ "$(stamp "$PV_CMAKE_DIR")" != "$pv_version $PV_PY_DIR" ]; then
+# The stamp names what the copy was made from and how (bump the last word when the rules change).
+pv_cmake_stamp="$pv_version $PV_PY_DIR rules-2"
+if [ "$(stamp "$PV_CMAKE_DIR")" != "$pv_cmake_stamp" ]; then
   log "writing a private copy of ParaView's CMake package into $pv_cmake"
   rm -rf "$PV_CMAKE_DIR"
   mkdir -p "$PV_CMAKE_DIR"
@@ -216,11 +230,25 @@ if [ "$(stamp "$PV_CMAKE_DIR")" != "$pv_version $PV_PY_DIR" ]; then
       -e "s|get_filename_component(PACKAGE_PREFIX_DIR \"\${CMAKE_CURRENT_LIST_DIR}/|get_filename_component(PACKAGE_PREFIX_DIR \"$orig_dir/|" \
       "${pv_py_rules[@]}" "$f"
   done < <(find "$pv_cmake" -name '*.cmake' -print0)
+  # Debian 13 names the extension modules X.cpython-313-x86_64-linux-gnu.so, its CMake targets
+  # still X.so: point those at the files that exist.
+  renames="$PV_CMAKE_DIR/renames.sed"
+  : > "$renames"
+  while IFS= read -r module; do
+    for renamed in "${module%.so}".cpython-*.so; do
+      if [ ! -e "$module" ] && [ -e "$renamed" ]; then
+        printf 's|%s"|%s"|g\n' "$module" "$renamed" >> "$renames"
+      fi
+    done
+  done < <(grep -rhoE "$pv_site/[^\" ]*\.so" "$pv_cmake" | sort -u)
+  if [ -s "$renames" ]; then
+    find "$pv_cmake" -name '*.cmake' -exec sed -i -f "$renames" {} +
+  fi
   if grep -rlq -e '_IMPORT_PREFIX "${CMAKE_CURRENT_LIST_FILE}"' \
        -e '_vtk_module_import_prefix "${CMAKE_CURRENT_LIST_DIR}"' "$pv_cmake"; then
     die "ParaView's CMake package computes its prefix in a way this script does not know"
   fi
-  printf '%s\n' "$pv_version $PV_PY_DIR" > "$PV_CMAKE_DIR/.version"
+  printf '%s\n' "$pv_cmake_stamp" > "$PV_CMAKE_DIR/.version"
 fi
 
 [ "$PROFILE" = paraview ] && exit 0
