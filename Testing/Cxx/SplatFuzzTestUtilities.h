@@ -315,9 +315,9 @@ enum Outcome
   CleanError,       // a std::runtime_error naming the file
   UnclearError,     // an exception that does not name the file
   HalfBuilt,        // a dataset that is inconsistent, or a truncation read as if whole
-  AbsurdAllocation, // std::bad_alloc, VTK's "Unable to allocate", or a resident set over 1 GiB
-  Crash,            // a signal other than the watchdog's
-  Hang,             // the watchdog's alarm
+  AbsurdAllocation, // std::bad_alloc, VTK's "Unable to allocate", or 1 GiB more resident
+  Crash,            // a signal other than the watchdogs'
+  Hang,             // the CPU-time or wall-clock watchdog
   NumberOfOutcomes
 };
 
@@ -331,8 +331,20 @@ inline const char* OutcomeName(int outcome)
 /// Reads `path`, returning the dataset or throwing (the entry point splat_render uses).
 using Reader = std::function<vtkSmartPointer<vtkDataObject>(const std::string& path)>;
 
-constexpr unsigned WatchdogSeconds = 5;
+// A read that spins is stopped by its CPU time, which a loaded machine does not inflate; one
+// that blocks, by the wall clock.
+constexpr unsigned WatchdogCPUSeconds = 10;
+constexpr unsigned WatchdogSeconds = 60;
 constexpr long MaxResidentKiB = 1L << 20; // 1 GiB
+
+/// The resident set of this process now, in KiB (a child starts with its parent's).
+inline long ResidentKiB()
+{
+  long pages = 0, resident = 0;
+  std::ifstream statm("/proc/self/statm");
+  statm >> pages >> resident;
+  return resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
 
 /// Reads `path` in a child process with a watchdog; the child checks the result against
 /// `reference` and reports through its exit status. VTK's messages go to a string window in the
@@ -346,10 +358,13 @@ inline Outcome ReadInChild(const Reader& reader, const std::string& path,
     throw std::runtime_error("pipe failed");
   }
   std::fflush(nullptr);
+  const long inherited = ResidentKiB();
   const pid_t pid = fork();
   if (pid == 0)
   {
     close(pipeFds[0]);
+    const rlimit cpu{ WatchdogCPUSeconds, WatchdogCPUSeconds + 5 };
+    setrlimit(RLIMIT_CPU, &cpu);
     alarm(WatchdogSeconds);
     vtkNew<vtkStringOutputWindow> messages;
     vtkOutputWindow::SetInstance(messages);
@@ -408,11 +423,13 @@ inline Outcome ReadInChild(const Reader& reader, const std::string& path,
   if (WIFSIGNALED(status))
   {
     detail = std::string("signal ") + strsignal(WTERMSIG(status)) + "\n" + report;
-    return WTERMSIG(status) == SIGALRM ? Hang : Crash;
+    const int signal = WTERMSIG(status);
+    return signal == SIGALRM || signal == SIGXCPU ? Hang : Crash;
   }
-  if (usage.ru_maxrss > MaxResidentKiB)
+  if (usage.ru_maxrss - inherited > MaxResidentKiB)
   {
-    detail = "resident set " + std::to_string(usage.ru_maxrss / 1024) + " MiB\n" + report;
+    detail = "resident set " + std::to_string(usage.ru_maxrss / 1024) + " MiB, " +
+      std::to_string(inherited / 1024) + " MiB of it inherited\n" + report;
     return AbsurdAllocation;
   }
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : Crash;
