@@ -362,12 +362,14 @@ struct GaussianSplats
   int Degree = 0;
 };
 
-// Reads a 3D Gaussian Splatting capture; throws with a readable message when it cannot.
-inline GaussianSplats ReadGaussianSplats(const std::string& path)
+// Reads a 3D Gaussian Splatting capture (a .spz as right-up-back with `spzFromRUB`); throws
+// with a readable message when it cannot.
+inline GaussianSplats ReadGaussianSplats(const std::string& path, bool spzFromRUB = false)
 {
   RequireFile(path);
   vtkNew<vtkGaussianSplatReader> reader;
   reader->SetFileName(path.c_str());
+  reader->SetSPZFromRUB(spzFromRUB);
   UpdateReader(reader, path);
   if (reader->GetOutput()->GetNumberOfPoints() == 0)
   {

@@ -581,7 +581,8 @@ int RenderFile(const Options& options)
   }
   if (IsGaussianSplatFile(options.Input))
   {
-    const splatexample::GaussianSplats capture = splatexample::ReadGaussianSplats(options.Input);
+    const splatexample::GaussianSplats capture =
+      splatexample::ReadGaussianSplats(options.Input, options.SPZFromRUB);
     std::cout << options.Input << ": 3D Gaussian Splatting capture: "
               << capture.Kernels->GetNumberOfPoints() << " Gaussians, SH degree "
               << capture.Degree << ", drawn by vtkVolumeSplatMapper" << std::endl;

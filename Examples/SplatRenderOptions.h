@@ -82,6 +82,10 @@ Options (a value follows as --name VALUE or --name=VALUE):
                           view is camera --camera's, the size its aspect at most 800 pixels
                           wide unless --size is given
   --camera N              captures: the training camera to view from (default 0)
+  --spz-frame stored|rub  .spz captures: take the values as stored (default: the .ply's frame,
+                          as splat-transform writes them) or as the right-up-back frame of
+                          the format's README, turned into the .ply's
+                          (vtkGaussianSplatReader::SPZFromRUB)
   --shade on|off          volumes: light the kernels by the scalar gradient (default on)
   --grid NAME             .vdb files: the grid to draw (default the first one supported)
   --texture IMAGE         meshes with texture coordinates (PLY u,v or s,t; OBJ vt): acquire the
@@ -118,6 +122,7 @@ struct Options
   int FootprintFilter = vtkVolumeSplatMapper::AUTOMATIC_FILTER;
   std::string Cameras; // a capture's training cameras; empty: cameras.json beside it, if any
   int Camera = 0;
+  bool SPZFromRUB = false;
   bool SizeGiven = false;
   bool Shade = true;
   std::string Grid; // of a .vdb file; empty: the reader's default
@@ -306,6 +311,9 @@ inline Options ParseCommandLine(int argc, char* argv[])
     { "--camera",
       [&](const std::string& name, const std::string& value)
       { options.Camera = ParseCount(name, value, 0, 1 << 20); } },
+    { "--spz-frame",
+      [&](const std::string& name, const std::string& value)
+      { options.SPZFromRUB = ParseChoice(name, value, { { "stored", 0 }, { "rub", 1 } }) != 0; } },
     { "--shade",
       [&](const std::string& name, const std::string& value)
       { options.Shade = ParseChoice(name, value, { { "on", 1 }, { "off", 0 } }) != 0; } },

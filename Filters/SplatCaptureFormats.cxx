@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SplatCaptureFormats.h"
+#include "SplatSphericalHarmonics.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkErrorCode.h"
@@ -11,6 +12,7 @@
 #include "vtkStringArray.h"
 #include "vtkSplatPLYReader.h"
 
+#include <Eigen/Dense>
 #include <vtksys/SystemTools.hxx>
 #include <zlib.h>
 
@@ -126,6 +128,73 @@ const char* FormatName(Format format)
     default:
       return "unknown";
   }
+}
+
+//------------------------------------------------------------------------------
+HarmonicsTurn::HarmonicsTurn(const double q[3][3], int degree)
+  : Degree(degree)
+{
+  // A Fibonacci spiral of directions: every band's basis has full rank on it.
+  constexpr int Directions = 64;
+  const int n = splat::SphericalHarmonicsCoefficients(degree);
+  Eigen::MatrixXd at(Directions, n), turned(Directions, n);
+  float basis[splat::MaximumSphericalHarmonicsCoefficients];
+  for (int i = 0; i < Directions; ++i)
+  {
+    const double z = 1.0 - (2.0 * i + 1.0) / Directions;
+    const double r = std::sqrt(1.0 - z * z), phi = 2.399963229728653 * i;
+    const double d[3] = { r * std::cos(phi), r * std::sin(phi), z };
+    splat::SphericalHarmonicsBasis(glm::vec3(d[0], d[1], d[2]), degree, basis);
+    at.row(i) = Eigen::Map<Eigen::RowVectorXf>(basis, n).cast<double>();
+    glm::vec3 back; // Q^T d
+    for (int c = 0; c < 3; ++c)
+    {
+      back[c] = static_cast<float>(q[0][c] * d[0] + q[1][c] * d[1] + q[2][c] * d[2]);
+    }
+    splat::SphericalHarmonicsBasis(back, degree, basis);
+    turned.row(i) = Eigen::Map<Eigen::RowVectorXf>(basis, n).cast<double>();
+  }
+  for (int l = 1; l <= degree; ++l)
+  {
+    const int first = l * l, size = 2 * l + 1;
+    const Eigen::MatrixXd block = at.middleCols(first, size)
+                                    .colPivHouseholderQr()
+                                    .solve(turned.middleCols(first, size));
+    for (int r = 0; r < size; ++r)
+    {
+      for (int c = 0; c < size; ++c)
+      {
+        // Coefficient r of the turned band is the sum over c of block(r, c) times the old c.
+        // Entries within float noise of 0 or +-1 are snapped, so axis turns stay exact.
+        const double v = block(r, c), nearest = std::round(v);
+        this->Blocks.push_back(static_cast<float>(std::abs(v - nearest) < 1e-6 ? nearest : v));
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void HarmonicsTurn::Apply(float* rest) const
+{
+  float turned[3 * splat::MaximumSphericalHarmonicsCoefficients];
+  const float* block = this->Blocks.data();
+  for (int l = 1, first = 0; l <= this->Degree; first += 2 * l + 1, ++l)
+  {
+    const int size = 2 * l + 1;
+    for (int r = 0; r < size; ++r, block += size)
+    {
+      for (int channel = 0; channel < 3; ++channel)
+      {
+        float sum = 0.0f;
+        for (int c = 0; c < size; ++c)
+        {
+          sum += block[c] * rest[3 * (first + c) + channel];
+        }
+        turned[3 * (first + r) + channel] = sum;
+      }
+    }
+  }
+  std::copy(turned, turned + 3 * RestCoefficients(this->Degree), rest);
 }
 
 //------------------------------------------------------------------------------

@@ -60,6 +60,26 @@ enum class Format
 Format Identify(const std::string& fileName);
 const char* FormatName(Format format);
 
+// Spherical-harmonic coefficients turned with the Gaussians they color. Where positions and
+// orientations are mapped by an orthogonal Q (a rotation or a reflection), the color seen along
+// d must be the one seen before along Q^T d: band l turns by the (2l+1)^2 block M_l with
+// Y_l(d) M_l = Y_l(Q^T d). Each block is fitted once per Q by least squares over directions
+// spread on the sphere (exact, a band being closed under rotations) from the mapper's own basis
+// (SplatSphericalHarmonics.h), so that its order and signs carry over unchanged.
+class HarmonicsTurn
+{
+public:
+  // `q` row-major, x' = q x; `degree` 0 to 3.
+  HarmonicsTurn(const double q[3][3], int degree);
+
+  // Coefficients 1 .. RestCoefficients(degree) of one Gaussian, RGB interleaved, in place.
+  void Apply(float* rest) const;
+
+private:
+  int Degree;
+  std::vector<float> Blocks; // band 1's 3x3, band 2's 5x5, band 3's 7x7, row-major
+};
+
 // The output arrays of vtkGaussianSplatReader for `count` Gaussians, set one Gaussian at a time
 // from the quantities of the INRIA layout. The setters are thread-safe for distinct indices.
 class Kernels
@@ -88,6 +108,12 @@ public:
   void SetRest(vtkIdType i, int k, int c, float value)
   {
     this->Harmonics[(static_cast<std::size_t>(i) * (this->PerChannel + 1) + k) * 3 + c] = value;
+  }
+
+  // Turns the coefficients set for Gaussian i (after its SetRest calls).
+  void TurnRest(vtkIdType i, const HarmonicsTurn& turn)
+  {
+    turn.Apply(this->Harmonics + (static_cast<std::size_t>(i) * (this->PerChannel + 1) + 1) * 3);
   }
 
   // Flags kept as field data (for instance .spz's antialiasing flag).
@@ -167,7 +193,9 @@ vtkSmartPointer<vtkPolyData> ReadPLYFile(
 float HalfToFloat(std::uint16_t half);
 
 // The decoders, each filling the output of vtkGaussianSplatReader.
-void ReadSPZ(const std::string& fileName, vtkPolyData* output, const Progress& progress);
+// fromRUB: the .spz is in Niantic's right-up-back frame (vtkGaussianSplatReader::SPZFromRUB).
+void ReadSPZ(
+  const std::string& fileName, bool fromRUB, vtkPolyData* output, const Progress& progress);
 void ReadCompressedPLY(const std::string& fileName, vtkPolyData* output, const Progress& progress);
 void ReadSOG(const std::string& fileName, vtkPolyData* output, const Progress& progress);
 void ReadGLTF(const std::string& fileName, vtkPolyData* output, const Progress& progress);

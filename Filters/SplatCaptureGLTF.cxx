@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // glTF 2.0 (.glb, or .gltf with its buffers as files or data URIs) with KHR_gaussian_splatting:
 // every point primitive of the scene's nodes whose attributes include the extension's ROTATION,
-// SCALE and OPACITY, with the node transforms applied. glTF's frame (+y up, +z forward) is
-// turned into the INRIA .ply's (+y down): a half turn about z, as splat-transform writes it.
+// SCALE and OPACITY, with the node transforms applied (to the spherical harmonics too). glTF's
+// frame (+y up, +z forward) is turned into the INRIA .ply's (+y down): a half turn about z, as
+// splat-transform writes it.
 #include "SplatCaptureFormats.h"
 
 #include "vtkErrorCode.h"
@@ -10,6 +11,7 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 
+#include <Eigen/Dense>
 #include <json/json.h>
 #include <vtksys/Base64.h>
 #include <vtksys/SystemTools.hxx>
@@ -387,14 +389,16 @@ bool IsSimilarity(const double m[16], double r[3][3], double& k)
 
 // Turns a Gaussian (position, scale, rotation w first) by the affine `m`: a rotation and a
 // uniform scale compose with its own; any other linear part turns its covariance
-// A R S^2 R^T A^T, decomposed again. The spherical harmonics are left as they are (a rotated
-// node turns the shape, not the view-dependent colors).
+// A R S^2 R^T A^T, decomposed again. The spherical harmonics turn apart (ColorTurn).
 void Apply(const double m[16], float p[3], float s[3], float q[4])
 {
   double position[3];
   for (int i = 0; i < 3; ++i)
   {
     position[i] = m[4 * i] * p[0] + m[4 * i + 1] * p[1] + m[4 * i + 2] * p[2] + m[4 * i + 3];
+  }
+  for (int i = 0; i < 3; ++i)
+  {
     p[i] = static_cast<float>(position[i]);
   }
   double node[3][3], k;
@@ -455,6 +459,33 @@ void Apply(const double m[16], float p[3], float s[3], float q[4])
   {
     q[i] = static_cast<float>(quaternion[i]);
   }
+}
+
+// How the view-dependent colors of a primitive turn: with the orthogonal factor Q of its node's
+// linear part A = Q P (the rotation or reflection in it; a scale or shear turns no direction),
+// then with the half turn about z into the INRIA frame.
+HarmonicsTurn ColorTurn(const double m[16], int degree)
+{
+  Eigen::Matrix3d a;
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      a(i, j) = m[4 * i + j];
+    }
+  }
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Matrix3d q =
+    Eigen::Vector3d(-1.0, -1.0, 1.0).asDiagonal() * svd.matrixU() * svd.matrixV().transpose();
+  double rows[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      rows[i][j] = q(i, j);
+    }
+  }
+  return HarmonicsTurn(rows, degree);
 }
 }
 
@@ -527,6 +558,7 @@ void ReadGLTF(const std::string& fileName, vtkPolyData* output, const Progress& 
             std::to_string(m), 3));
       }
     }
+    const HarmonicsTurn colorTurn = ColorTurn(p.Transform, kernels.Degree());
     vtkSMPTools::For(0, static_cast<vtkIdType>(p.Count),
       [&](vtkIdType begin, vtkIdType end)
       {
@@ -561,15 +593,14 @@ void ReadGLTF(const std::string& fileName, vtkPolyData* output, const Progress& 
           {
             kernels.SetColor(o, Value(color, i, 0), Value(color, i, 1), Value(color, i, 2));
           }
-          // The half turn multiplies coefficient (l, m) by (-1)^m: the even indices k flip.
           for (std::size_t k = 0; k < rest.size(); ++k)
           {
-            const float sign = k % 2 == 0 ? -1.0f : 1.0f;
             for (int c = 0; c < 3; ++c)
             {
-              kernels.SetRest(o, static_cast<int>(k) + 1, c, sign * Value(rest[k], i, c));
+              kernels.SetRest(o, static_cast<int>(k) + 1, c, Value(rest[k], i, c));
             }
           }
+          kernels.TurnRest(o, colorTurn);
         }
       });
     first += static_cast<vtkIdType>(p.Count);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Niantic's .spz: versions 2 and 3 (one gzip stream) and 4 (a plain header, a table of contents
 // and one zstd stream per attribute). The values are taken as stored, in the frame of the
-// INRIA .ply, as splat-transform and the web viewers write and read them.
+// INRIA .ply, as splat-transform and the web viewers write and read them, or, on request, as
+// the right-up-back frame the format's README names, turned into the .ply's.
 #include "SplatCaptureFormats.h"
 
 #include "vtkErrorCode.h"
@@ -125,8 +126,13 @@ std::vector<std::vector<std::uint8_t>> ReadStreams(Bytes& in, const Header& head
 
 
 void Decode(const Header& header, const std::array<const std::uint8_t*, 6>& streams,
-  Kernels& kernels, const Progress& progress)
+  bool fromRUB, Kernels& kernels, const Progress& progress)
 {
+  // RUB to the .ply's right-down-forward: a half turn about x. An orientation may take it on
+  // either side (Q R or Q R Q^T draw the same Gaussian for a diagonal Q); the latter keeps w.
+  const float flip = fromRUB ? -1.0f : 1.0f;
+  const double halfTurn[3][3] = { { 1, 0, 0 }, { 0, -1, 0 }, { 0, 0, -1 } };
+  const HarmonicsTurn colorTurn(halfTurn, header.Degree);
   const float unit = 1.0f / static_cast<float>(1 << header.FractionalBits);
   const int perChannel = RestCoefficients(header.Degree);
   const vtkIdType n = header.Count;
@@ -146,7 +152,7 @@ void Decode(const Header& header, const std::array<const std::uint8_t*, 6>& stre
             v = (v & 0x800000) ? v - (1 << 24) : v;
             p[c] = static_cast<float>(v) * unit;
           }
-          kernels.SetPosition(i, p[0], p[1], p[2]);
+          kernels.SetPosition(i, p[0], flip * p[1], flip * p[2]);
           kernels.SetOpacity(i, streams[1][i] / 255.0f);
           const std::uint8_t* color = streams[2] + 3 * i;
           kernels.SetDC(i, (color[0] / 255.0f - 0.5f) / 0.15f, (color[1] / 255.0f - 0.5f) / 0.15f,
@@ -186,7 +192,7 @@ void Decode(const Header& header, const std::array<const std::uint8_t*, 6>& stre
             }
             q[3] = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - sum)));
           }
-          kernels.SetRotation(i, q[3], q[0], q[1], q[2]);
+          kernels.SetRotation(i, q[3], q[0], flip * q[1], flip * q[2]);
           // Coefficient-major with the channels inside, as the output.
           const std::uint8_t* sh = streams[5] + static_cast<std::size_t>(3 * perChannel) * i;
           for (int k = 0; k < perChannel; ++k)
@@ -196,6 +202,10 @@ void Decode(const Header& header, const std::array<const std::uint8_t*, 6>& stre
               kernels.SetRest(i, k + 1, c, (sh[3 * k + c] - 128.0f) / 128.0f);
             }
           }
+          if (fromRUB)
+          {
+            kernels.TurnRest(i, colorTurn);
+          }
         }
       });
     progress(0.3 + 0.7 * static_cast<double>(std::min(n, first + block)) / std::max<vtkIdType>(n, 1));
@@ -204,7 +214,8 @@ void Decode(const Header& header, const std::array<const std::uint8_t*, 6>& stre
 }
 
 //------------------------------------------------------------------------------
-void ReadSPZ(const std::string& fileName, vtkPolyData* output, const Progress& progress)
+void ReadSPZ(
+  const std::string& fileName, bool fromRUB, vtkPolyData* output, const Progress& progress)
 {
   // The largest file of MaxGaussians Gaussians (under 100 bytes each) fits in 32 GiB.
   const std::vector<std::uint8_t> file = ReadFile(fileName, std::size_t(32) << 30);
@@ -261,7 +272,7 @@ void ReadSPZ(const std::string& fileName, vtkPolyData* output, const Progress& p
   }
   progress(0.3);
   Kernels kernels(header.Count, header.Degree);
-  Decode(header, starts, kernels, progress);
+  Decode(header, starts, fromRUB, kernels, progress);
   kernels.SetFlag("Antialiased", header.Flags & 1);
   kernels.MoveTo(output);
 }

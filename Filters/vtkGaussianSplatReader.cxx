@@ -141,7 +141,7 @@ int vtkGaussianSplatReader::RequestData(
         ReadCompressedPLY(name, result, progress);
         break;
       case Format::SPZ:
-        ReadSPZ(name, result, progress);
+        ReadSPZ(name, this->SPZFromRUB, result, progress);
         break;
       case Format::SOG:
         ReadSOG(name, result, progress);
@@ -344,5 +344,6 @@ void vtkGaussianSplatReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "SPZFromRUB: " << (this->SPZFromRUB ? "On" : "Off") << "\n";
   os << indent << "SphericalHarmonicsDegree: " << this->SphericalHarmonicsDegree << "\n";
 }

@@ -30,14 +30,15 @@
  *   (3 float32), scale (3 float32, linear), color and opacity (4 uint8, color/255 and
  *   opacity/255) and rotation (4 uint8, (q + 1) 128 clamped, w first).
  * - Niantic's .spz, versions 2 and 3 (gzip) and 4 (zstd streams), taken in the frame they are
- *   stored in (the .ply's, as splat-transform writes them); the antialiasing flag becomes the
- *   field-data array "Antialiased".
+ *   stored in (the .ply's, as splat-transform writes them) or, with SPZFromRUB, in the
+ *   right-up-back frame the format's README names; the antialiasing flag becomes the field-data array
+ *   "Antialiased".
  * - PlayCanvas's SOG: the bundled .sog archive, or the meta.json of its folder form (versions
  *   1 and 2), WebP images decoded with libwebp.
  * - GaussianSplats3D's .ksplat, compression levels 0 to 2.
  * - glTF 2.0 (.glb, .gltf) with KHR_gaussian_splatting: every Gaussian primitive of the scene,
- *   node transforms applied to the kernels (not to their spherical harmonics), turned from
- *   glTF's +y up into the .ply's +y down by a half turn about z.
+ *   node transforms applied (the spherical harmonics turn with the rotation or reflection in
+ *   them), turned from glTF's +y up into the .ply's +y down by a half turn about z.
  *
  * Invalid values (NaN, zero quaternions) are passed through: vtkVolumeSplatMapper skips and
  * counts them. Truncated or corrupt files give a vtkErrorMacro naming the file and what was
@@ -68,6 +69,21 @@ public:
    */
   vtkSetStringMacro(FileName);
   vtkGetStringMacro(FileName);
+  ///@}
+
+  ///@{
+  /**
+   * The frame of .spz files. The format's README names a right-up-back frame (+y up, +z
+   * toward the viewer), which Niantic's spz library writes when told its source is a .ply
+   * (PackOptions::from = RDF); by default it, ply_to_spz, splat-transform, Spark and the
+   * PlayCanvas viewers store the .ply's right-down-forward frame unchanged, and nothing in the
+   * file tells the two apart. Off (the default): the values as stored, which reads those files
+   * as their .ply. On: the file is taken as right-up-back and turned into the .ply's frame (a
+   * half turn about x of the positions, the orientations and the spherical harmonics).
+   */
+  vtkSetMacro(SPZFromRUB, bool);
+  vtkGetMacro(SPZFromRUB, bool);
+  vtkBooleanMacro(SPZFromRUB, bool);
   ///@}
 
   /**
@@ -102,6 +118,7 @@ protected:
   void Fail(int errorCode, const std::string& what);
 
   char* FileName = nullptr;
+  bool SPZFromRUB = false;
   int SphericalHarmonicsDegree = -1;
 
 private:

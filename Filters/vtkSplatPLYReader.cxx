@@ -3,6 +3,7 @@
 #include "SplatPLYFormat.h"
 
 #include "vtkCellArray.h"
+#include "vtkGaussianSplatReader.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkErrorCode.h"
@@ -725,7 +726,7 @@ bool vtkSplatPLYReader::CanReadFile(const char* fileName)
   try
   {
     parser.ReadHeader(fileName);
-    return true;
+    return !vtkGaussianSplatReader::IsGaussianSplatFile(fileName);
   }
   catch (const std::exception&)
   {

@@ -73,7 +73,10 @@ public:
   ///@}
 
   /**
-   * Whether the file starts with a valid PLY header (only the header is read).
+   * Whether the file starts with a valid PLY header (only the header is read) and is not a 3D
+   * Gaussian Splatting capture. ParaView's reader factory asks every reader's CanReadFile and
+   * asks the user to choose when several accept: captures are left to vtkGaussianSplatReader
+   * alone. This reader still reads them when asked to.
    */
   static bool CanReadFile(const char* fileName);
 

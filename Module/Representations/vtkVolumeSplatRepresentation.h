@@ -22,7 +22,7 @@
  * ranks. Point sets are redistributed by the view into a k-d tree of regions. Either way a
  * kernel reaching past its rank's region is blended with its rank's image, not in depth order
  * with the neighbor's kernels: within about two standard deviations of the region boundaries
- * the order is approximate (the README gives the measured difference from one rank).
+ * the order is approximate (docs/paraview.md gives the measured difference from one rank).
  *
  * @sa vtkVolumeSplatMapper vtkSplatPointsFilter vtkSurfaceSplatRepresentation
  */

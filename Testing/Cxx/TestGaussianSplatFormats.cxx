@@ -19,6 +19,7 @@
 // data's two real captures. Skips when the converters are absent.
 #include "SplatCaptureReference.h"
 #include "SplatCaptureScene.h"
+#include "SplatSphericalHarmonics.h"
 #include "SplatTestUtilities.h"
 #include "SplatVolumeTestUtilities.h"
 #include "vtkGaussianSplatReader.h"
@@ -29,6 +30,7 @@
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkIdList.h"
+#include "vtkMath.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
@@ -160,10 +162,11 @@ bool Run(const std::string& command, const std::string& log)
   return std::system((command + " >" + Quote(log) + " 2>&1").c_str()) == 0;
 }
 
-vtkSmartPointer<vtkPolyData> Read(const std::string& path, int& degree)
+vtkSmartPointer<vtkPolyData> Read(const std::string& path, int& degree, bool spzFromRUB = false)
 {
   vtkNew<vtkGaussianSplatReader> reader;
   reader->SetFileName(path.c_str());
+  reader->SetSPZFromRUB(spzFromRUB);
   reader->Update();
   degree = reader->GetSphericalHarmonicsDegree();
   return reader->GetOutput();
@@ -313,6 +316,122 @@ std::vector<double> Draw(vtkPolyData* data, const splattest::CaptureView& view)
     mapper, data, view.Position.data(), view.FocalPoint.data(), view.Up.data(), 200)));
 }
 
+// The largest difference, over a spread of view directions d, between the view-dependent
+// color of Gaussian i of `a` along d and that of Gaussian i of `b` along r d (before clamping).
+double ColorTurnError(vtkPolyData* a, vtkPolyData* b, vtkIdType i, const double r[3][3], int degree)
+{
+  const int n = splat::SphericalHarmonicsCoefficients(degree);
+  vtkDataArray* shA = a->GetPointData()->GetArray("SphericalHarmonics");
+  vtkDataArray* shB = b->GetPointData()->GetArray("SphericalHarmonics");
+  double worst = 0.0;
+  for (int k = 0; k < 16; ++k)
+  {
+    const double z = 1.0 - (2.0 * k + 1.0) / 16.0, rho = std::sqrt(1.0 - z * z);
+    const double d[3] = { rho * std::cos(2.4 * k), rho * std::sin(2.4 * k), z };
+    double turned[3];
+    vtkMath::Multiply3x3(r, d, turned);
+    float basisA[16], basisB[16];
+    splat::SphericalHarmonicsBasis(glm::vec3(d[0], d[1], d[2]), degree, basisA);
+    splat::SphericalHarmonicsBasis(glm::vec3(turned[0], turned[1], turned[2]), degree, basisB);
+    for (int c = 0; c < 3; ++c)
+    {
+      double colorA = 0.0, colorB = 0.0;
+      for (int m = 0; m < n; ++m)
+      {
+        colorA += basisA[m] * shA->GetComponent(i, 3 * m + c);
+        colorB += basisB[m] * shB->GetComponent(i, 3 * m + c);
+      }
+      worst = std::max(worst, std::abs(colorA - colorB));
+    }
+  }
+  return worst;
+}
+
+// The covariance R S^2 R^T of Gaussian i of `data`.
+void Covariance(vtkPolyData* data, vtkIdType i, double sigma[3][3])
+{
+  double q[4], s[3], r[3][3];
+  data->GetPointData()->GetArray("Rotation")->GetTuple(i, q);
+  data->GetPointData()->GetArray("Scale")->GetTuple(i, s);
+  vtkMath::QuaternionToMatrix3x3(q, r);
+  for (int j = 0; j < 3; ++j)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      sigma[j][k] = 0.0;
+      for (int m = 0; m < 3; ++m)
+      {
+        sigma[j][k] += r[j][m] * s[m] * s[m] * r[k][m];
+      }
+    }
+  }
+}
+
+// Checks that `b` holds the Gaussians of `a` turned by the unit quaternion q (w first): their
+// positions, their covariances (relative to the largest entry) and view-dependent colors.
+void CheckTurned(const std::string& name, vtkPolyData* a, vtkPolyData* b, const double q[4],
+  int degree)
+{
+  double r[3][3];
+  vtkMath::QuaternionToMatrix3x3(q, r);
+  bool same = a->GetNumberOfPoints() == b->GetNumberOfPoints();
+  double position = 0.0, shape = 0.0, color = 0.0;
+  for (vtkIdType i = 0; same && i < a->GetNumberOfPoints(); ++i)
+  {
+    double pa[3], pb[3], turned[3], sa[3][3], sb[3][3], rs[3][3], expected[3][3];
+    a->GetPoint(i, pa);
+    b->GetPoint(i, pb);
+    vtkMath::Multiply3x3(r, pa, turned);
+    position = std::max(position, std::sqrt(vtkMath::Distance2BetweenPoints(turned, pb)));
+    Covariance(a, i, sa);
+    Covariance(b, i, sb);
+    vtkMath::Multiply3x3(r, sa, rs);
+    double largest = 0.0, difference = 0.0;
+    for (int j = 0; j < 3; ++j)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        expected[j][k] = rs[j][0] * r[k][0] + rs[j][1] * r[k][1] + rs[j][2] * r[k][2];
+        largest = std::max(largest, std::abs(expected[j][k]));
+        difference = std::max(difference, std::abs(expected[j][k] - sb[j][k]));
+      }
+    }
+    shape = std::max(shape, largest > 0.0 ? difference / largest : difference);
+    if (degree > 0)
+    {
+      color = std::max(color, ColorTurnError(a, b, i, r, degree));
+    }
+  }
+  std::printf("%-28s position %.2g, covariance %.2g, SH color %.2g\n", name.c_str(), position,
+    shape, color);
+  Check(same && position < 1e-4 && shape < 1e-5 && color < 1e-4,
+    name + ": the Gaussians or their colors did not turn");
+}
+
+// The .glb's JSON with a node rotation: every Gaussian's position, orientation and
+// view-dependent color must turn with it from those of the same file without it (gltf-bin). In
+// the reader's (INRIA) frame the turn is H R H, H the half turn about z between the frames.
+void TestGLTFRotated(const Json::Value& json, const std::string& work)
+{
+  int baseDegree = -1;
+  vtkSmartPointer<vtkPolyData> source = Read(work + "/gltf-bin.gltf", baseDegree);
+  const double axis[3] = { 0.48, 0.6, 0.64 }, angle = 1.1; // unit axis, radians
+  const double q[4] = { std::cos(angle / 2), std::sin(angle / 2) * axis[0],
+    std::sin(angle / 2) * axis[1], std::sin(angle / 2) * axis[2] };
+  Json::Value edited = json;
+  edited["buffers"][0]["uri"] = "variant.bin";
+  for (int c : { 1, 2, 3, 0 }) // glTF stores x, y, z, w
+  {
+    edited["nodes"][0]["rotation"].append(q[c]);
+  }
+  const std::string path = work + "/gltf-rotated.gltf";
+  std::ofstream(path) << Json::writeString(Json::StreamWriterBuilder(), edited);
+  int degree = -1;
+  vtkSmartPointer<vtkPolyData> data = Read(path, degree);
+  const double inria[4] = { q[0], -q[1], -q[2], q[3] }; // H R H for H = diag(-1, -1, 1)
+  CheckTurned("gltf-rotated", source, data, inria, degree);
+}
+
 // The .glb written again as .gltf files: its buffer in a .bin beside, or inline as a data URI,
 // and with a node translation, which moves every Gaussian by it (in glTF's frame).
 void TestGLTFVariants(const std::string& glb, vtkPolyData* source, const std::string& work)
@@ -376,6 +495,7 @@ void TestGLTFVariants(const std::string& glb, vtkPolyData* source, const std::st
     std::printf("%-28s %s\n", variant.Name, same ? "as the .glb" : "differs");
     Check(same, std::string(variant.Name) + ": not the .glb's Gaussians");
   }
+  TestGLTFRotated(json, work);
 }
 
 void TestFormat(const std::string& sourcePath, vtkPolyData* source, int degree,
@@ -476,6 +596,13 @@ void TestFormat(const std::string& sourcePath, vtkPolyData* source, int degree,
   if (format.Name == "glb" && stem == "torus-sh3")
   {
     TestGLTFVariants(converted, source, work);
+  }
+  if (format.Extension == ".spz" && stem == "torus-sh3")
+  {
+    // Read as Niantic's right-up-back frame: a half turn about x of what is stored.
+    int rubDegree = -1;
+    const double halfTurn[4] = { 0.0, 1.0, 0.0, 0.0 };
+    CheckTurned(where + " from RUB", data, Read(converted, rubDegree, true), halfTurn, degree);
   }
   Check(psnr >= limits.MinPSNR,
     where + ": PSNR " + std::to_string(psnr) + " dB, below " + std::to_string(limits.MinPSNR));

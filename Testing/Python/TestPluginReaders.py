@@ -267,8 +267,9 @@ def test_gaussian_splats(simple, servermanager, tmp):
     choice, offered = factory_choice(servermanager, capture)
     check(choice == ("sources", "GaussianSplatReader"),
           "the reader factory picks GaussianSplatReader for a 3DGS .ply (got %s)" % (choice,))
-    check({"GaussianSplatReader", "PLYReader", "SplatPLYReader"} <= set(offered),
-          "the GUI offers the 3 PLY readers for a 3DGS .ply (got %s)" % offered)
+    # Only one reader accepts it, so the GUI opens it without the Open Data With... question.
+    check(offered == ["GaussianSplatReader"],
+          "the GUI offers GaussianSplatReader alone for a 3DGS .ply (got %s)" % offered)
     reader = simple.OpenDataFile(capture)
     check(reader.GetXMLName() == "GaussianSplatReader",
           "OpenDataFile creates GaussianSplatReader (got %s)" % reader.GetXMLName())
@@ -313,8 +314,16 @@ def test_gaussian_splats(simple, servermanager, tmp):
           "SplatPLYReader accepts a PLY mesh")
     check(choice == ("sources", "PLYReader"),
           "the reader factory picks ParaView's PLYReader for a PLY mesh (got %s)" % (choice,))
-    check("SplatPLYReader" in offered and "GaussianSplatReader" not in offered,
-          "the GUI offers SplatPLYReader, not GaussianSplatReader, for a mesh (got %s)" % offered)
+    check(sorted(offered) == ["PLYReader", "SplatPLYReader"],
+          "the GUI offers PLYReader and SplatPLYReader for a mesh (got %s)" % offered)
+    # ParaView's PLY Reader, on the plugin's core, still reads meshes.
+    paraview_ply = simple.PLYReader(FileNames=[mesh])
+    paraview_ply.UpdatePipeline()
+    check(point_count(paraview_ply) == 4
+          and paraview_ply.GetDataInformation().GetNumberOfCells() == 1,
+          "PLYReader on the plugin's core: 4 points, 1 polygon (got %d points)"
+          % point_count(paraview_ply))
+    simple.Delete(paraview_ply)
     ply = globals()["SplatPLYReader"](FileName=mesh)
     ply.UpdatePipeline()
     info = ply.GetDataInformation()

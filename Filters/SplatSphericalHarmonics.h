@@ -5,8 +5,8 @@
  * convention of 3D Gaussian Splatting: the basis order, signs and constants of eval_sh in
  * graphdeco-inria/gaussian-splatting, utils/sh_utils.py, and color = max(0, 0.5 + sum_k
  * Y_k(d) c_k) per channel, d the unit direction from the eye to the kernel's center in model
- * coordinates. VTK-free (GLM only); glsl/vtkSplatSphericalHarmonics.glsl mirrors it line by
- * line.
+ * coordinates. VTK-free (GLM only); Rendering/glsl/vtkSplatSphericalHarmonics.glsl mirrors it
+ * line by line. It lives in SplatFilters because the capture readers turn coefficients with it.
  *
  * Coefficients are stored coefficient-major with RGB interleaved, 3 (degree + 1)^2 floats per
  * kernel: k0.r, k0.g, k0.b, k1.r, ... (the array contract of vtkVolumeSplatMapper's
