@@ -91,11 +91,12 @@ quality_page() {
   cat <<'EOF'
 # Quality settings, side by side
 
-What each setting changes, drawn by `splat_render` on the CPU (320x320). Back to the
-[README](../README.md). The settings are described in
-[surface-mapper.md](surface-mapper.md) and [volume-mapper.md](volume-mapper.md); their error
-against run time is in [performance.md](performance.md).
+What each setting changes. Back to the [README](../README.md). The settings are described in
+[surface-mapper.md](surface-mapper.md) and [volume-mapper.md](volume-mapper.md).
 EOF
+  if [ -f "$DOCS/report/error_vs_time.md" ]; then
+    printf 'Their error against run time: [report/error_vs_time.md](report/error_vs_time.md).\n'
+  fi
   row "Surface filter mode (\`SetFilterMode\`, \`--filter\`) on the report's checkerboard at a grazing angle (paper 000, figure 8), against the analytic reference: EWA (the default) stays gray where the checks are finer than the pixels, circular and unfiltered splats alias." \
     surface-reference surface-default surface-circular surface-unfiltered
   row "Surface cutoff (\`SetCutoff\`, \`--cutoff\`): where each splat is truncated; 1 is the paper's and the default." \
