@@ -2,11 +2,14 @@
 # Regenerates the pictures and figures of the README and docs/ (./splat docs): nothing in them
 # is copied by hand.
 #
-#   scripts/docs.sh BUILD_DIR [images|figures|all]
+#   scripts/docs.sh BUILD_DIR [images|screenshots|figures|all]
 #
 # images   the README's four result images (docs/images/{bunny,mri,cloud,donut}.png) and the
 #          capture rows of the quality gallery (docs/quality.md), drawn by splat_render on the
 #          CPU; about a minute.
+# screenshots  docs/images/paraview/*.png: ParaView's GUI with the plugin loaded and a capture,
+#          a scan and a .vdb opened, dumped with xwd (Debian's x11-apps) and converted by
+#          scripts/xwd_to_png.py; about 25 s each.
 # figures  docs/performance.md and docs/report/: a subset of the bench (the peers in the same
 #          run), the error-against-time report (tables, plot, the gallery's surface rows from
 #          its checkerboard), the captures' and the stability tables, stamped with the machine
@@ -17,7 +20,7 @@
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-BUILD="${1:?usage: scripts/docs.sh BUILD_DIR [images|figures|all]}"
+BUILD="${1:?usage: scripts/docs.sh BUILD_DIR [images|screenshots|figures|all]}"
 WHAT="${2:-all}"
 DATA="$ROOT/../shared/data"
 DOCS="$ROOT/docs"
@@ -155,10 +158,49 @@ EOF
   } > "$DOCS/performance.md"
 }
 
+# shot NAME FILE REPRESENTATION: docs/images/paraview/NAME.png, the ParaView GUI (1280x1024)
+# with FILE opened and shown as REPRESENTATION, the plugin loaded.
+shot() {
+  local name="$1" file="$2" representation="$3"
+  if [ ! -e "$file" ]; then
+    say "$file is absent: $name.png left as it is"
+    return 0
+  fi
+  mkdir -p "$DOCS/images/paraview"
+  # -geometry: the main window at the screen's size (its OpenGL view is also dumped correctly
+  # then, where a smaller window's comes out striped).
+  PYTHONPATH="$PARAVIEW_PYTHONPATH" SPLAT_SHOT_FILE="$file" \
+    SPLAT_SHOT_REPRESENTATION="$representation" paraview -geometry 1280x1024+0+0 --dr --plugins=SplatPlugin \
+    "--plugin-search-paths=$(dirname "$PLUGIN")" \
+    "--script=$ROOT/scripts/docs_paraview_scene.py" > "$WORK/$name.log" 2>&1 &
+  local pid=$!
+  sleep "${SPLAT_SHOT_SECONDS:-25}"
+  xwd -root -silent > "$WORK/$name.xwd"
+  kill "$pid"
+  wait "$pid" 2>/dev/null || true
+  /usr/bin/python3 "$ROOT/scripts/xwd_to_png.py" "$WORK/$name.xwd" \
+    "$DOCS/images/paraview/$name.png"
+}
+
+screenshots() {
+  PLUGIN="$(echo "$ROOT"/build/paraview/lib/paraview-*/plugins/SplatPlugin/SplatPlugin.so)"
+  if ! command -v xwd > /dev/null || ! command -v paraview > /dev/null || [ ! -f "$PLUGIN" ]; then
+    say "the ParaView screenshots need xwd (x11-apps), paraview and the plugin (./splat build paraview): left as they are"
+    return 0
+  fi
+  # ParaView's Python, unpacked by the set-up (docs/setup.md).
+  PARAVIEW_PYTHONPATH="${SPLAT_DEPS_DIR:-$ROOT/build/deps}/python3-paraview/usr/lib/python3/dist-packages"
+  say "the ParaView screenshots"
+  shot volume-splats "$DATA/donut_fused.ply" "Volume Splats"
+  shot surface-splats "$DATA/bunny.ply" "Surface Splats"
+  shot openvdb "$DATA/sphere.vdb" "Surface Splats"
+}
+
 case "$WHAT" in
   images) images ;;
+  screenshots) screenshots ;;
   figures) figures ;;
-  all) images && figures ;;
-  *) say "unknown part '$WHAT' (images, figures or all)"; exit 2 ;;
+  all) images && screenshots && figures ;;
+  *) say "unknown part '$WHAT' (images, screenshots, figures or all)"; exit 2 ;;
 esac
 say "done: git status docs/ shows what changed"
