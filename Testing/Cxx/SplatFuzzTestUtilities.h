@@ -14,6 +14,7 @@
 #include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringOutputWindow.h"
 
@@ -366,6 +367,10 @@ inline Outcome ReadInChild(const Reader& reader, const std::string& path,
     const rlimit cpu{ WatchdogCPUSeconds, WatchdogCPUSeconds + 5 };
     setrlimit(RLIMIT_CPU, &cpu);
     alarm(WatchdogSeconds);
+    // A fork copies only the calling thread: TBB's workers stay behind, and a child whose
+    // reader runs vtkSMPTools on TBB can wait for them forever (CI's Debian 13 leg: VTK 9.3's
+    // XML reader on the unchanged .vtp, stopped by the wall-clock alarm with no CPU used).
+    vtkSMPTools::SetBackend("Sequential");
     vtkNew<vtkStringOutputWindow> messages;
     vtkOutputWindow::SetInstance(messages);
     Outcome outcome;
