@@ -106,8 +106,9 @@ Splatting capture of --kernels Gaussians flattened onto a torus (SplatCaptureSce
 frame); it has no peer (VTK draws no view-dependent Gaussians), so its peer_ratio is empty.
 vdb is a cloud of --voxels active voxels of OpenVDB fog (SplatVdbScenes.h, written next to the
 CSV as cloud.vdb, tiles in its interior), read by vtkOpenVDBReader into one Gaussian kernel per
-active voxel (tiles as 2^3 kernels each) for vtkVolumeSplatMapper and into a dense image of its
-active bounding box (the reader's second output) for the ray casters; the reading is not timed.
+active voxel (its leaf-sized tiles as their voxels: a lattice, drawn sheet by sheet) for
+vtkVolumeSplatMapper and into a dense image of its active bounding box (the reader's second
+output) for the ray casters; the reading is not timed.
 peer_ratio is the peer's ms_per_frame at the same scene, points and size divided by the row's
 (above 1: faster than the peer): vtkPointGaussianMapper for surfaces,
 vtkFixedPointVolumeRayCastMapper for volumes. drawn_by is the backend that drew the splat

@@ -802,8 +802,9 @@ int Run(const Options& options)
        << cloud.ActiveVoxels - cloud.LeafVoxels << " of them, inside, stored as " << cloud.Tiles
        << " active tiles; `SplatVdbScenes.h`) on a rotated, non-uniformly scaled grid, written to "
        << "`cloud.vdb` and read by vtkOpenVDBReader: " << kernels->GetNumberOfPoints()
-       << " kernels (one per stored voxel, 2^3 per tile, each with the voxel's Gaussian and its "
-       << "sample volume), " << options.VolumeSize << "x" << options.VolumeSize << " pixels. "
+       << " kernels (one per active voxel, the leaf-sized tiles as their voxels, each with the "
+       << "voxel's Gaussian and its sample volume; a voxel lattice drawn sheet by sheet), "
+       << options.VolumeSize << "x" << options.VolumeSize << " pixels. "
        << VolumeReferenceText(result, "the reader's kernels (tau(density) times the sample volume)")
        << " The ray casters draw the reader's dense copy of the grid (" << dims[0] << "x"
        << dims[1] << "x" << dims[2] << " voxels over the active bounding box, the rotation as "

@@ -12,6 +12,7 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
@@ -66,6 +67,21 @@ struct vtkVolumeSplatMapper::KernelArrays
     this->Positions.clear();
     this->GridIds.clear();
     this->View = vtkVolumeSplatRasterizer::Kernels();
+  }
+
+  /// The kernels are voxels of a lattice (GridIds set): its axes, voxel 0's position and size.
+  void SetLattice(const glm::dmat3& indexToModel, const glm::dvec3& origin, const glm::ivec3& dims)
+  {
+    this->View.SharedCovariance = splat::VoxelCovariance(indexToModel);
+    this->View.PeakOpacity = false;
+    // The lists' axes: the index axes, unit length.
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      this->View.ListFrame[axis] = glm::normalize(indexToModel[axis]);
+    }
+    this->View.GridDimensions = dims;
+    this->View.GridAxes = indexToModel;
+    this->View.GridOrigin = origin;
   }
 
   /// Points the rasterizer's view at the arrays.
@@ -205,39 +221,72 @@ splat::Material MaterialOf(vtkVolumeProperty* property)
   return m;
 }
 
-// The unit normal of the scalar field at voxel (x, y, z) in model coordinates: minus the
-// gradient by central differences (one-sided at the border, and where a neighbor is not
-// finite), through the inverse transpose of the index-to-model matrix; zero where the gradient
-// is. It points from high to low values, out of bright structures.
-glm::vec3 VoxelNormal(vtkDataArray* scalars, const int dims[3], int x, int y, int z,
-  const glm::dmat3& gradientToModel)
+// The unit normal of the scalar field at voxel `index` (value s) in model coordinates: minus
+// the gradient by central differences (one-sided where a neighbor is missing or not finite:
+// valueAt(index, value) says whether it is there and gives its value), through the inverse
+// transpose of the index-to-model matrix; zero where the gradient is. It points from high to
+// low values, out of bright structures.
+template <typename ValueAt>
+glm::vec3 VoxelNormal(
+  const ValueAt& valueAt, const glm::ivec3& index, double s, const glm::dmat3& gradientToModel)
 {
-  const int index[3] = { x, y, z };
-  const vtkIdType strides[3] = { 1, dims[0], static_cast<vtkIdType>(dims[0]) * dims[1] };
-  const vtkIdType center = x + strides[1] * y + strides[2] * z;
-  const double s = scalars->GetComponent(center, 0);
   glm::dvec3 gradient(0.0);
   for (int axis = 0; axis < 3; ++axis)
   {
-    auto valueAt = [&](int step, double& value)
+    auto neighbor = [&](int step, double& value)
     {
-      const int i = index[axis] + step;
-      if (i < 0 || i >= dims[axis])
-      {
-        return false;
-      }
-      value = scalars->GetComponent(center + step * strides[axis], 0);
-      return std::isfinite(value);
+      glm::ivec3 at = index;
+      at[axis] += step;
+      return valueAt(at, value) && std::isfinite(value);
     };
     double low = s, high = s;
-    const bool hasLow = valueAt(-1, low);
-    const bool hasHigh = valueAt(1, high);
+    const bool hasLow = neighbor(-1, low);
+    const bool hasHigh = neighbor(1, high);
     const int span = (hasLow ? 1 : 0) + (hasHigh ? 1 : 0);
     gradient[axis] = span > 0 ? ((hasHigh ? high : s) - (hasLow ? low : s)) / span : 0.0;
   }
   const glm::dvec3 normal = -(gradientToModel * gradient);
   const double length = glm::length(normal);
   return length > 0.0 && std::isfinite(length) ? glm::vec3(normal / length) : glm::vec3(0.0f);
+}
+
+// A point set's voxel lattice (vtkOpenVDBReader's fog): a 3-component integer array
+// "VoxelIndex" and the 16-component field-data array "IndexToWorld" (row-major, column
+// vectors) of a non-singular affine map. Indices is null where the input has none.
+struct Lattice
+{
+  vtkDataArray* Indices = nullptr;
+  glm::dmat3 Axes{ 1.0 };
+  glm::dvec3 Origin{ 0.0 };
+};
+
+Lattice LatticeOf(vtkPointSet* input)
+{
+  Lattice lattice;
+  vtkDataArray* indices = ArrayOf(input, "VoxelIndex", 3);
+  vtkDataArray* matrix = input->GetFieldData()->GetArray("IndexToWorld");
+  if (!indices || indices->GetDataType() == VTK_FLOAT ||
+    indices->GetDataType() == VTK_DOUBLE || !matrix ||
+    matrix->GetNumberOfComponents() != 16 || matrix->GetNumberOfTuples() < 1)
+  {
+    return lattice;
+  }
+  double m[16];
+  matrix->GetTuple(0, m);
+  for (int column = 0; column < 3; ++column)
+  {
+    lattice.Origin[column] = m[4 * column + 3];
+    for (int row = 0; row < 3; ++row)
+    {
+      lattice.Axes[column][row] = m[4 * row + column];
+    }
+  }
+  const double volume = std::abs(glm::determinant(lattice.Axes));
+  if (IsFinite(m, 16) && volume > 0.0 && std::isfinite(volume))
+  {
+    lattice.Indices = indices;
+  }
+  return lattice;
 }
 }
 
@@ -319,6 +368,12 @@ void vtkVolumeSplatMapper::SetSheetResampling(bool on)
 bool vtkVolumeSplatMapper::GetSheetResampling()
 {
   return this->Rasterizer->GetSheetResampling();
+}
+
+//------------------------------------------------------------------------------
+bool vtkVolumeSplatMapper::GetSheetsUsed()
+{
+  return this->LastBackend == vtkSplatBackend::CPU && this->Rasterizer->GetSheetsUsed();
 }
 
 //------------------------------------------------------------------------------
@@ -459,7 +514,8 @@ bool vtkVolumeSplatMapper::UpdateKernels(vtkVolumeProperty* property)
   }
   else if (auto* points = vtkPointSet::SafeDownCast(input))
   {
-    ok = this->BuildPointKernels(points, property);
+    ok = LatticeOf(points).Indices ? this->BuildLatticeKernels(points, property)
+                                   : this->BuildPointKernels(points, property);
   }
   else
   {
@@ -527,6 +583,17 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
   }
   const bool shaded = property->GetShade(0) != 0;
   const glm::dmat3 gradientToModel = glm::transpose(glm::inverse(indexToModel));
+  auto valueAt = [&](const glm::ivec3& at, double& value)
+  {
+    if (glm::any(glm::lessThan(at, glm::ivec3(0))) ||
+      glm::any(glm::greaterThanEqual(at, glm::ivec3(dims[0], dims[1], dims[2]))))
+    {
+      return false;
+    }
+    const vtkIdType id = at.x + dims[0] * (at.y + static_cast<vtkIdType>(dims[1]) * at.z);
+    value = scalars->GetComponent(id, 0);
+    return true;
+  };
 
   // Two passes over the k-slices in parallel: count the visible voxels, then fill, so that the
   // kernels stay in voxel-id order (the Z list) whatever the number of threads.
@@ -593,8 +660,8 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
             k.GridIds[out] = id;
             if (shaded)
             {
-              const glm::vec3 normal = VoxelNormal(scalars, dims, static_cast<int>(x),
-                static_cast<int>(y), static_cast<int>(z), gradientToModel);
+              const glm::vec3 normal =
+                VoxelNormal(valueAt, glm::ivec3(x, y, z), s, gradientToModel);
               std::copy_n(&normal.x, 3, k.Normals.begin() + 3 * out);
             }
             ++out;
@@ -605,16 +672,106 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
   ReportKernelProgress(this, 1.0);
   this->NumberOfInvalidKernels = std::accumulate(invalid.begin(), invalid.end(), vtkIdType(0));
   this->NumberOfTransparentKernels = nx * ny * nz - n - this->NumberOfInvalidKernels;
-  k.View.SharedCovariance = splat::VoxelCovariance(indexToModel);
-  k.View.PeakOpacity = false;
-  // The lists' axes: the index axes, unit length.
-  for (int axis = 0; axis < 3; ++axis)
+  k.SetLattice(indexToModel, origin, glm::ivec3(dims[0], dims[1], dims[2]));
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkVolumeSplatMapper::BuildLatticeKernels(vtkPointSet* input, vtkVolumeProperty* property)
+{
+  const Lattice lattice = LatticeOf(input);
+  vtkDataArray* indices = lattice.Indices;
+  const glm::dmat3& indexToModel = lattice.Axes;
+  const glm::dvec3& indexOrigin = lattice.Origin;
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, this->ScalarMode,
+    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  if (!scalars || cellFlag != 0)
   {
-    k.View.ListFrame[axis] = glm::normalize(indexToModel[axis]);
+    vtkErrorMacro("vtkVolumeSplatMapper needs point scalars on its voxel lattice input.");
+    return false;
   }
-  k.View.GridDimensions = glm::ivec3(dims[0], dims[1], dims[2]);
-  k.View.GridAxes = indexToModel;
-  k.View.GridOrigin = origin;
+  const vtkIdType count = input->GetNumberOfPoints();
+  glm::ivec3 low(std::numeric_limits<int>::max()), high(std::numeric_limits<int>::min());
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    double index[3];
+    indices->GetTuple(i, index);
+    low = glm::min(low, glm::ivec3(index[0], index[1], index[2]));
+    high = glm::max(high, glm::ivec3(index[0], index[1], index[2]));
+  }
+  // The kernels' box of the lattice is the grid: ids over it, sorted, hold the sheets.
+  const glm::ivec3 dims = high - low + 1;
+  const vtkIdType nx = dims.x, ny = dims.y;
+  auto idOf = [&](const glm::ivec3& at)
+  { return (at.x - low.x) + nx * ((at.y - low.y) + ny * (at.z - low.z)); };
+  auto indexOf = [&](vtkIdType i)
+  {
+    double index[3];
+    indices->GetTuple(i, index);
+    return glm::ivec3(index[0], index[1], index[2]);
+  };
+  std::vector<std::pair<vtkIdType, vtkIdType>> voxels; // (id, point) of the finite values
+  voxels.reserve(count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    if (std::isfinite(scalars->GetComponent(i, 0)))
+    {
+      voxels.emplace_back(idOf(indexOf(i)), i);
+    }
+  }
+  this->NumberOfInvalidKernels = count - static_cast<vtkIdType>(voxels.size());
+  vtkSMPTools::Sort(voxels.begin(), voxels.end());
+  ReportKernelProgress(this, 0.5);
+
+  const TransferTables tables(property, scalars);
+  const double voxelVolume = std::abs(glm::determinant(indexToModel));
+  const glm::dvec3 origin = indexOrigin + indexToModel * glm::dvec3(low);
+  const bool shaded = property->GetShade(0) != 0;
+  const glm::dmat3 gradientToModel = glm::transpose(glm::inverse(indexToModel));
+  auto valueAt = [&](const glm::ivec3& at, double& value)
+  {
+    if (glm::any(glm::lessThan(at, low)) || glm::any(glm::greaterThan(at, high)))
+    {
+      return false;
+    }
+    const auto it = std::lower_bound(voxels.begin(), voxels.end(),
+      std::make_pair(idOf(at), vtkIdType(0)));
+    if (it == voxels.end() || it->first != idOf(at))
+    {
+      return false;
+    }
+    value = scalars->GetComponent(it->second, 0);
+    return true;
+  };
+  KernelArrays& k = *this->Kernels;
+  for (const auto& voxel : voxels)
+  {
+    const double s = scalars->GetComponent(voxel.second, 0);
+    const std::size_t entry = tables.Index(s);
+    const double tau = tables.Extinction[entry];
+    if (!(tau > 0.0))
+    {
+      ++this->NumberOfTransparentKernels;
+      continue;
+    }
+    const glm::ivec3 at = indexOf(voxel.second);
+    const glm::dvec3 p = indexOrigin + indexToModel * glm::dvec3(at);
+    for (int c = 0; c < 3; ++c)
+    {
+      k.Positions.push_back(p[c]);
+      k.Colors.push_back(static_cast<float>(tables.Colors[3 * entry + c]));
+    }
+    k.Strengths.push_back(static_cast<float>(tau * voxelVolume));
+    k.GridIds.push_back(voxel.first);
+    if (shaded)
+    {
+      const glm::vec3 normal = VoxelNormal(valueAt, at, s, gradientToModel);
+      k.Normals.insert(k.Normals.end(), &normal.x, &normal.x + 3);
+    }
+  }
+  ReportKernelProgress(this, 1.0);
+  k.SetLattice(indexToModel, origin, dims);
   return true;
 }
 

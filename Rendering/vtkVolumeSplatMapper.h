@@ -35,6 +35,13 @@
  *   1-component array (SampleVolumeArrayName, default "SampleVolume"): such a kernel's density
  *   integrates to the extinction times that volume, as image-data voxels do, so that the kernels
  *   reconstruct the field rather than each peaking at it.
+ * - a point set of voxels on a lattice (a sparse grid's active voxels: vtkOpenVDBReader writes
+ *   them for fog): a 3-component integer array "VoxelIndex" of each point's index coordinates
+ *   and a 16-component field-data array "IndexToWorld" (the row-major 4x4 matrix of the
+ *   index-to-world map, column vectors) make the kernels voxels of that grid, drawn as image
+ *   data is (positions from the indices, the voxel kernel of the map, the sheets of the grid's
+ *   index axes, shading normals from the neighbors present) with memory for the points only;
+ *   the covariance and sample-volume arrays are then not read.
  * The scalars are selected as for VTK's volume mappers (SetScalarMode, SelectScalarArray); the
  * first component is used.
  *
@@ -202,15 +209,20 @@ public:
 
   ///@{
   /**
-   * For image data on the CPU backend (BLENDED, CLIPPED and SINGLE_AXIS orderings): composite
-   * each list sheet by sheet in an intermediate image aligned with the grid's sheets, warped to
-   * the screen once per frame (vtkVolumeSplatSheetCompositor), where it applies; off splats
-   * every voxel on the screen (the exact per-kernel path). Default on.
+   * For image data and voxel lattices on the CPU backend (BLENDED, CLIPPED and SINGLE_AXIS
+   * orderings): composite each list sheet by sheet in an intermediate image aligned with the
+   * grid's sheets, warped to the screen once per frame (vtkVolumeSplatSheetCompositor), where
+   * it applies; off splats every voxel on the screen (the exact per-kernel path). Default on.
    */
   void SetSheetResampling(bool on);
   bool GetSheetResampling();
   vtkBooleanMacro(SheetResampling, bool);
   ///@}
+
+  /**
+   * Whether the last frame on the CPU backend went through the sheets (SheetResampling).
+   */
+  bool GetSheetsUsed();
 
   ///@{
   /**
@@ -346,6 +358,8 @@ protected:
   std::string KernelSettings();
   bool BuildImageKernels(vtkImageData* image, vtkVolumeProperty* property);
   bool BuildPointKernels(vtkPointSet* points, vtkVolumeProperty* property);
+  /// Kernels of a point set that carries its voxel lattice, built as for image data.
+  bool BuildLatticeKernels(vtkPointSet* points, vtkVolumeProperty* property);
 
   /**
    * The backend that renders this frame: the requested one, AUTO resolved by

@@ -17,11 +17,17 @@
  *   A diag(sigma^2) A^T (A the grid's index-to-world linear map, sigma splat::VoxelKernelSigma,
  *   0.6 voxel: splat::VoxelCovariance, the kernel of an image-data voxel), a "SampleVolume" array
  *   |det A| (the mapper then reconstructs the field as it does for image data) and the voxel
- *   value as point scalars named after the grid. An active tile is not expanded into voxels:
- *   it becomes TileSubdivision^3 kernels (default 2^3), the cells of a coarse grid of spacing
- *   b = tile width / TileSubdivision voxels, each with sigma 0.6 b and sample volume b^3 |det A|,
- *   which keeps adjacent tiles a partition of unity and the cost proportional to the stored
- *   data. Non-linear (frustum) transforms use the local linear map at each voxel.
+ *   value as point scalars named after the grid. An active tile becomes TileSubdivision^3
+ *   kernels, the cells of a coarse grid of spacing b = tile width / TileSubdivision voxels,
+ *   each with sigma 0.6 b and sample volume b^3 |det A|, which keeps adjacent tiles a partition
+ *   of unity and the cost bounded per tile. The default, 8, makes the tiles of a leaf node's
+ *   size (8^3 voxels, the usual tiles of fog) their voxels. Non-linear (frustum) transforms use
+ *   the local linear map at each voxel.
+ *   When every kernel is one voxel (no tile wider than TileSubdivision) under a linear
+ *   transform, the kernels sit on the grid's lattice and say so: a 3-component int array
+ *   "VoxelIndex" (each voxel's index coordinates) and a 16-component field-data array
+ *   "IndexToWorld" (the matrix of GetGridIndexToWorld). vtkVolumeSplatMapper then draws them
+ *   as it draws image data, sheet by sheet, without the grid's dense memory.
  * - level sets (class GRID_LEVEL_SET): surfels for vtkSurfaceSplatMapper. Every active voxel
  *   whose sign differs from one of its six neighbors (math::GradStencil::zeroCrossing) gives a
  *   point projected onto the zero crossing by a Newton step x - phi grad(phi) / |grad(phi)|^2,
@@ -87,7 +93,8 @@ public:
 
   ///@{
   /**
-   * Kernels per edge of an active tile (the tile becomes TileSubdivision^3 kernels). Default 2.
+   * Kernels per edge of an active tile (the tile becomes TileSubdivision^3 kernels). Default 8,
+   * a leaf node's width: leaf-sized tiles become their voxels and the kernels stay a lattice.
    */
   vtkSetClampMacro(TileSubdivision, int, 1, 16);
   vtkGetMacro(TileSubdivision, int);
@@ -180,7 +187,7 @@ protected:
 
   char* FileName = nullptr;
   char* GridName = nullptr;
-  int TileSubdivision = 2;
+  int TileSubdivision = 8;
   double SurfelRadiusScale = 1.0;
   bool ProduceDenseOutput = false;
   int DenseIndexBounds[6] = { 0, -1, 0, -1, 0, -1 };

@@ -20,7 +20,9 @@
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -266,6 +268,13 @@ struct vtkOpenVDBReaderBuilder
     {
       throw std::runtime_error("it has no finite active values");
     }
+    // Every kernel one voxel under a linear map: the kernels sit on the grid's lattice.
+    const bool lattice = grid.transform().isLinear() &&
+      std::all_of(tiles.begin(), tiles.end(), [k](const auto& t) { return t.first.dim()[0] == k; });
+    vtkNew<vtkIntArray> indices;
+    indices->SetName("VoxelIndex");
+    indices->SetNumberOfComponents(3);
+    indices->SetNumberOfTuples(lattice ? n : 0);
 
     vtkNew<vtkPoints> points;
     points->SetDataTypeToFloat();
@@ -293,6 +302,13 @@ struct vtkOpenVDBReaderBuilder
       }
       volumes->SetValue(id, static_cast<float>(std::abs(glm::determinant(A))));
       values.Set(id, value);
+      if (lattice)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          indices->SetTypedComponent(id, c, static_cast<int>(std::lround(xyz[c])));
+        }
+      }
     };
     this->ForLeaves(leaves.size(), 0.2, 0.9,
       [&](vtkIdType begin, vtkIdType end)
@@ -327,6 +343,26 @@ struct vtkOpenVDBReaderBuilder
     output->GetPointData()->AddArray(covariances);
     output->GetPointData()->AddArray(volumes);
     values.AddTo(output->GetPointData());
+    if (lattice)
+    {
+      output->GetPointData()->AddArray(indices);
+      vtkNew<vtkDoubleArray> indexToWorld;
+      indexToWorld->SetName("IndexToWorld");
+      indexToWorld->SetNumberOfComponents(16);
+      indexToWorld->SetNumberOfTuples(1);
+      const glm::dmat3 A = splatvdb::IndexJacobian(map, openvdb::Vec3d(0.0));
+      const glm::dvec3 origin = splatvdb::ToGlm(map.applyMap(openvdb::Vec3d(0.0)));
+      for (int row = 0; row < 4; ++row)
+      {
+        for (int column = 0; column < 4; ++column)
+        {
+          const double m = row == 3 ? (column == 3 ? 1.0 : 0.0)
+                                    : (column == 3 ? origin[row] : A[column][row]);
+          indexToWorld->SetTypedComponent(0, 4 * row + column, m);
+        }
+      }
+      output->GetFieldData()->AddArray(indexToWorld);
+    }
     this->Reader->NumberOfVoxelKernels = voxels;
     this->Reader->NumberOfTileKernels = n - voxels;
     this->Reader->NumberOfTiles = static_cast<vtkIdType>(tiles.size());

@@ -4,8 +4,13 @@
 //   field given to the mapper as vtkImageData with the grid's direction matrix and spacing
 //   (MAX_FIELD_RMSE); without the reader's SampleVolume array (kernels peaking at the
 //   extinction instead of reconstructing it) it does not (MIN_PEAK_RMSE);
+// - its kernels carry their voxel lattice (vtkOpenVDBReader's VoxelIndex and IndexToWorld), so
+//   the mapper draws them through the sheets, as image data; without the lattice (the
+//   per-kernel path) the image agrees within MAX_LATTICE_RMSE, and shaded (normals from the
+//   sparse grid's neighbors) it agrees with the shaded image data as closely;
 // - a grid with active tiles renders like its voxelized copy (MAX_TILE_RMSE) with at most
-//   MAX_TILE_KERNEL_RATIO of its kernels.
+//   MAX_TILE_KERNEL_RATIO of its kernels for TileSubdivision 2, and exactly like it with the
+//   default 8 (leaf-sized tiles become their voxels).
 #include "SplatTestUtilities.h"
 #include "SplatVolumeTestUtilities.h"
 #include "vtkOpenVDBReader.h"
@@ -70,14 +75,15 @@ std::string ImageDirectory; // -T: where the images are written for a look
 /// Renders `mapper`'s input at 256^2 from a fixed oblique camera direction, looking at
 /// `center` from `distance` times 3 world units.
 std::vector<double> Render(vtkVolumeSplatMapper* mapper, const openvdb::Vec3d& center,
-  double distance, const std::string& name)
+  double distance, const std::string& name, bool shaded = false)
 {
   auto window = splattest::MakeRenderWindow(256, 256);
   vtkNew<vtkRenderer> renderer;
   window->AddRenderer(renderer);
   renderer->SetBackground(0.0, 0.0, 0.0);
-  splattest::AddVolume(renderer, mapper,
-    splattest::ExtinctionProperty(MaxExtinction, UnitDistance, Color));
+  auto property = splattest::ExtinctionProperty(MaxExtinction, UnitDistance, Color);
+  property->SetShade(shaded);
+  splattest::AddVolume(renderer, mapper, property);
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->SetFocalPoint(center[0], center[1], center[2]);
   camera->SetPosition(center[0] + 1.6 * distance, center[1] + 1.1 * distance,
@@ -96,27 +102,46 @@ std::vector<double> Render(vtkVolumeSplatMapper* mapper, const openvdb::Vec3d& c
   return splattest::ToRGB(image);
 }
 
+/// How RenderFile draws the reader's output.
+struct Options
+{
+  int TileSubdivision = 8;
+  bool SampleVolume = true; // off: the SampleVolume array removed
+  bool Lattice = true;      // off: the VoxelIndex array removed
+  bool Shaded = false;
+  vtkIdType* Kernels = nullptr; // the reader's kernels
+  bool* SheetsUsed = nullptr;   // whether the frame went through the sheets
+};
+
 std::vector<double> RenderFile(const std::string& path, const openvdb::Vec3d& center,
-  double distance, const std::string& name, vtkIdType* kernels = nullptr, int tileSubdivision = 2,
-  bool sampleVolume = true)
+  double distance, const std::string& name, const Options& options = Options())
 {
   vtkNew<vtkOpenVDBReader> reader;
   reader->SetFileName(path.c_str());
-  reader->SetTileSubdivision(tileSubdivision);
+  reader->SetTileSubdivision(options.TileSubdivision);
   reader->Update();
   vtkNew<vtkPolyData> data;
   data->ShallowCopy(reader->GetOutput());
-  if (!sampleVolume)
+  if (!options.SampleVolume)
   {
     data->GetPointData()->RemoveArray("SampleVolume");
   }
-  if (kernels)
+  if (!options.Lattice)
   {
-    *kernels = data->GetNumberOfPoints();
+    data->GetPointData()->RemoveArray("VoxelIndex");
+  }
+  if (options.Kernels)
+  {
+    *options.Kernels = data->GetNumberOfPoints();
   }
   vtkNew<vtkVolumeSplatMapper> mapper;
   mapper->SetInputData(data);
-  return Render(mapper, center, distance, name);
+  std::vector<double> rgb = Render(mapper, center, distance, name, options.Shaded);
+  if (options.SheetsUsed)
+  {
+    *options.SheetsUsed = mapper->GetSheetsUsed();
+  }
+  return rgb;
 }
 }
 
@@ -176,7 +201,12 @@ int main(int argc, char* argv[])
   const std::vector<double> reference = Render(imageMapper, center, 1.0, "image_data");
 
   vtkIdType kernels = 0;
-  const std::vector<double> fromGrid = RenderFile(fogPath, center, 1.0, "grid", &kernels);
+  bool sheets = false;
+  Options lattice;
+  lattice.Kernels = &kernels;
+  lattice.SheetsUsed = &sheets;
+  const std::vector<double> fromGrid = RenderFile(fogPath, center, 1.0, "grid", lattice);
+  Check(sheets, "the grid's lattice drawn through the sheets", sheets);
   Check(kernels == static_cast<vtkIdType>(grid->activeVoxelCount()), "kernels = active voxels",
     static_cast<double>(kernels));
   double energy = 0.0;
@@ -188,9 +218,28 @@ int main(int argc, char* argv[])
   Check(rms > 0.1, "reference image RMS (not blank)", rms);
   const double fieldRMSE = splattest::RMSE(fromGrid, reference);
   Check(fieldRMSE <= MAX_FIELD_RMSE, "grid vs image data RMSE", fieldRMSE);
+  Options peak;
+  peak.SampleVolume = peak.Lattice = false;
   const double peakRMSE =
-    splattest::RMSE(RenderFile(fogPath, center, 1.0, "peak", nullptr, 2, false), reference);
+    splattest::RMSE(RenderFile(fogPath, center, 1.0, "peak", peak), reference);
   Check(peakRMSE >= MIN_PEAK_RMSE, "without SampleVolume, RMSE", peakRMSE);
+
+  // The lattice against every kernel splatted on its own.
+  Options perKernel;
+  perKernel.Lattice = false;
+  perKernel.SheetsUsed = &sheets;
+  const std::vector<double> kernelImage =
+    RenderFile(fogPath, center, 1.0, "per_kernel", perKernel);
+  Check(!sheets, "without VoxelIndex, the per-kernel path", sheets);
+  const double latticeRMSE = splattest::RMSE(fromGrid, kernelImage);
+  Check(latticeRMSE <= MAX_LATTICE_RMSE, "lattice vs per-kernel RMSE", latticeRMSE);
+  // Shaded: normals from the sparse grid's neighbors, against those of the image data.
+  Options shaded;
+  shaded.Shaded = true;
+  const double shadedRMSE =
+    splattest::RMSE(RenderFile(fogPath, center, 1.0, "grid_shaded", shaded),
+      Render(imageMapper, center, 1.0, "image_data_shaded", true));
+  Check(shadedRMSE <= MAX_LATTICE_RMSE, "shaded lattice vs image data RMSE", shadedRMSE);
 
   // A box of constant extinction with leaf-sized tiles inside, and its voxelized copy.
   auto tiled = openvdb::FloatGrid::create(0.0f);
@@ -203,16 +252,19 @@ int main(int argc, char* argv[])
   const openvdb::Vec3d boxCenter =
     tiled->transform().indexToWorld(openvdb::Vec3d(28.5, 28.5, 28.5));
   vtkIdType voxelKernels = 0;
+  Options voxelOptions;
+  voxelOptions.Kernels = &voxelKernels;
   const std::vector<double> voxels =
-    RenderFile(Write(temp, "voxelized", voxelized), boxCenter, 4.0, "voxelized",
-      &voxelKernels);
+    RenderFile(Write(temp, "voxelized", voxelized), boxCenter, 4.0, "voxelized", voxelOptions);
   const std::string tiledPath = Write(temp, "tiled", tiled);
-  for (int k : { 1, 2, 4 })
+  for (int k : { 1, 2, 4, 8 })
   {
     vtkIdType tileKernels = 0;
-    const double rmse =
-      splattest::RMSE(RenderFile(tiledPath, boxCenter, 4.0, "tiled" + std::to_string(k),
-                        &tileKernels, k), voxels);
+    Options tileOptions;
+    tileOptions.TileSubdivision = k;
+    tileOptions.Kernels = &tileKernels;
+    const double rmse = splattest::RMSE(
+      RenderFile(tiledPath, boxCenter, 4.0, "tiled" + std::to_string(k), tileOptions), voxels);
     std::printf("TileSubdivision %d: %lld kernels (voxelized %lld), RMSE %g\n", k,
       static_cast<long long>(tileKernels), static_cast<long long>(voxelKernels), rmse);
     if (k == 2)
@@ -220,6 +272,11 @@ int main(int argc, char* argv[])
       Check(rmse <= MAX_TILE_RMSE, "tiled vs voxelized RMSE", rmse);
       const double ratio = static_cast<double>(tileKernels) / voxelKernels;
       Check(ratio <= MAX_TILE_KERNEL_RATIO, "tiled / voxelized kernels", ratio);
+    }
+    if (k == 8)
+    {
+      Check(tileKernels == voxelKernels && rmse == 0.0, "TileSubdivision 8 vs voxelized RMSE",
+        rmse);
     }
   }
   return failures == 0 ? 0 : 1;

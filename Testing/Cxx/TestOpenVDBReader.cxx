@@ -6,6 +6,7 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -231,6 +232,54 @@ TEST(OpenVDBReader, TilesAreFewKernelsOfTheSameMass)
     const double voxel = grid->transform().baseMap()->determinant();
     EXPECT_NEAR(total / (std::abs(voxel) * grid->activeVoxelCount()), 1.0, 1e-5);
   }
+}
+
+//------------------------------------------------------------------------------
+TEST(OpenVDBReader, LeafTilesBecomeVoxelsOfTheLattice)
+{
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("box");
+  grid->setTransform(AffineTransform());
+  grid->fill(openvdb::CoordBBox(-3, -3, -3, 20, 20, 20), 0.5f, true);
+  ASSERT_GT(grid->tree().activeTileCount(), 0u);
+  const std::string path = TempPath("lattice.vdb");
+  Write(path, { grid });
+  // The default TileSubdivision (8) makes the leaf-sized tiles voxels: one kernel per active
+  // voxel, each with its index, and the map that places them.
+  Read read(path);
+  vtkPolyData* output = read.Output();
+  ASSERT_EQ(output->GetNumberOfPoints(), static_cast<vtkIdType>(grid->activeVoxelCount()));
+  ExpectVoxelKernels(output, *grid, 0.0);
+  vtkDataArray* indices = output->GetPointData()->GetArray("VoxelIndex");
+  vtkDataArray* matrix = output->GetFieldData()->GetArray("IndexToWorld");
+  ASSERT_TRUE(indices && matrix);
+  ASSERT_EQ(indices->GetNumberOfComponents(), 3);
+  ASSERT_EQ(matrix->GetNumberOfComponents(), 16);
+  double m[16], expected[16];
+  matrix->GetTuple(0, m);
+  ASSERT_TRUE(read.Reader->GetGridIndexToWorld(0, expected));
+  for (int i = 0; i < 16; ++i)
+  {
+    EXPECT_NEAR(m[i], expected[i], 1e-12);
+  }
+  for (vtkIdType id = 0; id < output->GetNumberOfPoints(); ++id)
+  {
+    double p[3], ijk[3];
+    output->GetPoint(id, p);
+    indices->GetTuple(id, ijk);
+    for (int row = 0; row < 3; ++row)
+    {
+      const double world = m[4 * row] * ijk[0] + m[4 * row + 1] * ijk[1] +
+        m[4 * row + 2] * ijk[2] + m[4 * row + 3];
+      ASSERT_NEAR(p[row], world, 1e-5) << "kernel " << id;
+    }
+  }
+  // Tiles as coarser kernels are off the lattice: no indices.
+  read.Reader->SetTileSubdivision(2);
+  read.Reader->Update();
+  EXPECT_LT(output->GetNumberOfPoints(), static_cast<vtkIdType>(grid->activeVoxelCount()));
+  EXPECT_EQ(output->GetPointData()->GetArray("VoxelIndex"), nullptr);
+  EXPECT_EQ(output->GetFieldData()->GetArray("IndexToWorld"), nullptr);
 }
 
 //------------------------------------------------------------------------------

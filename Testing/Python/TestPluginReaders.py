@@ -10,7 +10,8 @@ Checks that
 - OpenDataFile picks Splat OpenVDB Reader for a .vdb; its GridName drop-down lists the file's
   supported grids (not the bool grid), defaults to the first, and selects what is read: the fog
   grid's 24 voxel kernels and one tile's TileSubdivision^3 kernels with Covariance, SampleVolume
-  and the values, the level set's surfels with Normals and SurfelRadiusScale x voxel size radii,
+  and the values (VoxelIndex while the tile is its voxels, TileSubdivision 8), the level
+  set's surfels with Normals and SurfelRadiusScale x voxel size radii,
   the point grid's 5 points and their attribute; ProduceDenseOutput and DenseIndexBounds give
   the 4 x 3 x 2 image of the fog's values on port 1;
 - the reader sends progress events from 0 to 1 and ParaView's progress handler (what the
@@ -124,13 +125,14 @@ def test_vdb(simple, servermanager, writer, tmp):
     check(close_range(array_range(reader, "height"), 0.0, 2.0),
           "grid 'cloud': attribute 'height' spans 0..2 (got %s)" % (array_range(reader, "height"),))
 
-    # The fog volume: 24 voxel kernels and one tile of TileSubdivision^3 kernels.
+    # The fog volume: 24 voxel kernels and one 8^3 tile, by default as its voxels (a lattice:
+    # VoxelIndex), or as TileSubdivision^3 kernels.
     reader.GridName = "density"
     reader.UpdatePipeline()
-    check(point_count(reader) == 24 + 8,
-          "grid 'density': 24 voxel + 2^3 tile kernels (got %d)" % point_count(reader))
+    check(point_count(reader) == 24 + 8 ** 3,
+          "grid 'density': 24 voxel + 8^3 tile voxel kernels (got %d)" % point_count(reader))
     arrays = reader.PointData.keys()
-    for name in ("Covariance", "SampleVolume", "density"):
+    for name in ("Covariance", "SampleVolume", "density", "VoxelIndex"):
         check(name in arrays, "grid 'density': array %s (arrays %s)" % (name, arrays))
     check(close_range(array_range(reader, "density"), 1.0, 12.0),
           "grid 'density': values 1..12 (got %s)" % (array_range(reader, "density"),))
@@ -141,6 +143,8 @@ def test_vdb(simple, servermanager, writer, tmp):
     reader.UpdatePipeline()
     check(point_count(reader) == 24 + 27,
           "TileSubdivision 3: 24 + 3^3 kernels (got %d)" % point_count(reader))
+    check("VoxelIndex" not in reader.PointData.keys(),
+          "TileSubdivision 3: kernels off the lattice, no VoxelIndex")
     check(info_value(reader.SMProxy, "NumberOfTileKernels") == 27,
           "NumberOfTileKernels is 27 (got %s)" % info_value(reader.SMProxy, "NumberOfTileKernels"))
 
