@@ -443,6 +443,43 @@ vtkSmartPointer<vtkPolyData> ReadVdbGrid(const std::string& path, const Options&
   return reader->GetOutput();
 }
 
+// An OpenVDB file's grid, drawn by what the reader made of it: Gaussian kernels (fog and other
+// scalar or vector grids) through FogProperty where the values are densities (none negative),
+// otherwise RangeProperty with a unit distance of the smallest sample's width, framed on all
+// the active voxels (a grid has no stray samples to leave out); surfels (level sets) with their
+// own radii; or a point cloud (point grids).
+int RenderVdbFile(const Options& options, const std::string& png)
+{
+  vtkSmartPointer<vtkPolyData> data = ReadVdbGrid(options.Input, options);
+  vtkPointData* arrays = data->GetPointData();
+  if (vtkDataArray* volumes = arrays->GetArray("SampleVolume"))
+  {
+    std::cout << "grid '" << (arrays->GetScalars() ? arrays->GetScalars()->GetName() : "")
+              << "': " << data->GetNumberOfPoints()
+              << " Gaussian kernels, drawn by vtkVolumeSplatMapper" << std::endl;
+    const bool densities = arrays->GetScalars()->GetFiniteRange(0)[0] >= 0.0;
+    RenderVolumeScene(MakeWindow(options), data,
+      densities ? splatexample::FogProperty(data)
+                : RangeProperty(arrays->GetScalars(), std::cbrt(volumes->GetRange(0)[0])),
+      options, png, [&options](vtkRenderer* renderer) { SetUpCamera(renderer, options, 0.0); });
+    return EXIT_SUCCESS;
+  }
+  if (arrays->GetArray("Radius") && arrays->GetNormals())
+  {
+    std::cout << "level set: " << data->GetNumberOfPoints()
+              << " surfels on its surface, drawn as surface splats" << std::endl;
+    vtkNew<vtkSurfaceSplatMapper> mapper;
+    mapper->SetInputData(data);
+    mapper->SetRadiusArrayName("Radius");
+    RenderScene(MakeWindow(options), mapper, options, png);
+    return EXIT_SUCCESS;
+  }
+  std::cout << "point grid: " << data->GetNumberOfPoints()
+            << " points, drawn as surface splats" << std::endl;
+  RenderScene(MakeWindow(options), SplatMapper(data, options), options, png);
+  return EXIT_SUCCESS;
+}
+
 int RenderDemoScenes(const Options& given)
 {
   // --texture is for the textured scene only: the other meshes have no texture coordinates.
@@ -516,41 +553,17 @@ int RenderDemoScenes(const Options& given)
       renderer->ResetCameraClippingRange();
     });
   ++images;
+  {
+    // Drawn as `splat_render smoke.vdb` draws it: the first view of a fog file.
+    Options smoke = options;
+    smoke.Input = folder + "/smoke.vdb";
+    std::cout << "smoke: " << splatexample::WriteSmokeVdb(smoke.Input, 300000)
+              << " active voxels of OpenVDB fog written to " << smoke.Input << std::endl;
+    RenderVdbFile(smoke, folder + "/smoke.png");
+    ++images;
+  }
   std::cout << "Wrote " << images << " images to " << vtksys::SystemTools::CollapseFullPath(folder)
             << "\n";
-  return EXIT_SUCCESS;
-}
-
-// An OpenVDB file's grid, drawn by what the reader made of it: Gaussian kernels (fog and other
-// scalar or vector grids) through RangeProperty with a unit distance of the smallest sample's
-// width, surfels (level sets) with their own radii, or a point cloud (point grids).
-int RenderVdbFile(const Options& options, const std::string& png)
-{
-  vtkSmartPointer<vtkPolyData> data = ReadVdbGrid(options.Input, options);
-  vtkPointData* arrays = data->GetPointData();
-  if (vtkDataArray* volumes = arrays->GetArray("SampleVolume"))
-  {
-    std::cout << "grid '" << (arrays->GetScalars() ? arrays->GetScalars()->GetName() : "")
-              << "': " << data->GetNumberOfPoints()
-              << " Gaussian kernels, drawn by vtkVolumeSplatMapper" << std::endl;
-    RenderVolumeScene(MakeWindow(options), data,
-      RangeProperty(arrays->GetScalars(), std::cbrt(volumes->GetRange(0)[0])), options, png,
-      [&options, &data](vtkRenderer* renderer) { PlaceOnBulk(renderer, data, options); });
-    return EXIT_SUCCESS;
-  }
-  if (arrays->GetArray("Radius") && arrays->GetNormals())
-  {
-    std::cout << "level set: " << data->GetNumberOfPoints()
-              << " surfels on its surface, drawn as surface splats" << std::endl;
-    vtkNew<vtkSurfaceSplatMapper> mapper;
-    mapper->SetInputData(data);
-    mapper->SetRadiusArrayName("Radius");
-    RenderScene(MakeWindow(options), mapper, options, png);
-    return EXIT_SUCCESS;
-  }
-  std::cout << "point grid: " << data->GetNumberOfPoints()
-            << " points, drawn as surface splats" << std::endl;
-  RenderScene(MakeWindow(options), SplatMapper(data, options), options, png);
   return EXIT_SUCCESS;
 }
 

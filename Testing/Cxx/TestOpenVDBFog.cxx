@@ -10,8 +10,12 @@
 //   sparse grid's neighbors) it agrees with the shaded image data as closely;
 // - a grid with active tiles renders like its voxelized copy (MAX_TILE_RMSE) with at most
 //   MAX_TILE_KERNEL_RATIO of its kernels for TileSubdivision 2, and exactly like it with the
-//   default 8 (leaf-sized tiles become their voxels).
+//   default 8 (leaf-sized tiles become their voxels);
+// - the first view of a smoke plume (splat_render's: Examples/SplatVdbScenes.h's FogProperty,
+//   the camera reset on the kernels) shows it: at least MIN_FOG_COVERAGE of the image, at most
+//   MAX_FOG_OPAQUE of that nearly opaque, a core of at least MIN_FOG_PEAK.
 #include "SplatTestUtilities.h"
+#include "SplatVdbScenes.h"
 #include "SplatVolumeTestUtilities.h"
 #include "vtkOpenVDBReader.h"
 #include "vtkVolumeSplatMapper.h"
@@ -278,6 +282,48 @@ int main(int argc, char* argv[])
       Check(tileKernels == voxelKernels && rmse == 0.0, "TileSubdivision 8 vs voxelized RMSE",
         rmse);
     }
+  }
+
+  // The first view of a fog: white emission on black, so a pixel's value is its opacity.
+  {
+    vtkNew<vtkOpenVDBReader> reader;
+    const std::string smokePath = temp + "/TestOpenVDBFog_smoke.vdb";
+    splatexample::WriteSmokeVdb(smokePath, 40000);
+    reader->SetFileName(smokePath.c_str());
+    reader->Update();
+    vtkNew<vtkVolumeSplatMapper> mapper;
+    mapper->SetInputConnection(reader->GetOutputPort());
+    auto window = splattest::MakeRenderWindow(256, 256);
+    vtkNew<vtkRenderer> renderer;
+    window->AddRenderer(renderer);
+    renderer->SetBackground(0.0, 0.0, 0.0);
+    splattest::AddVolume(renderer, mapper, splatexample::FogProperty(reader->GetOutput()));
+    renderer->ResetCamera();
+    window->Render();
+    auto image = splattest::Capture(window);
+    if (!ImageDirectory.empty())
+    {
+      vtkNew<vtkPNGWriter> writer;
+      writer->SetFileName((ImageDirectory + "/TestOpenVDBFog_smoke.png").c_str());
+      writer->SetInputData(image);
+      writer->Write();
+    }
+    const std::vector<double> rgb = splattest::ToRGB(image);
+    std::size_t covered = 0, opaque = 0;
+    double peak = 0.0;
+    for (std::size_t p = 0; p < rgb.size(); p += 3)
+    {
+      const double value = rgb[p + 1];
+      covered += value > 0.02;
+      opaque += value > 0.97;
+      peak = std::max(peak, value);
+    }
+    const double coverage = static_cast<double>(covered) / (rgb.size() / 3);
+    Check(coverage >= MIN_FOG_COVERAGE, "smoke's first view: image covered", coverage);
+    const double opaqueShare = covered ? static_cast<double>(opaque) / covered : 1.0;
+    Check(opaqueShare <= MAX_FOG_OPAQUE, "smoke's first view: covered pixels nearly opaque",
+      opaqueShare);
+    Check(peak >= MIN_FOG_PEAK, "smoke's first view: densest pixel", peak);
   }
   return failures == 0 ? 0 : 1;
 }
