@@ -11,9 +11,9 @@
 #          a scan and a .vdb opened, dumped with xwd (Debian's x11-apps) and converted by
 #          scripts/xwd_to_png.py; about 25 s each.
 # figures  docs/performance.md and docs/report/: a subset of the bench (the peers in the same
-#          run), the error-against-time report (tables, plot, the gallery's surface rows from
-#          its checkerboard), the captures' and the stability tables, stamped with the machine
-#          and the commit; about 20 minutes on 2 cores.
+#          run), the error-against-time report of the surface and volume scenes (tables, plot,
+#          the gallery's surface rows from its checkerboard), the captures' and the stability
+#          tables, stamped with the machine and the commit; about 10 minutes on 2 cores.
 #
 # Runs under the caller's X server (./splat runs it under Xvfb). Images whose input is absent
 # (the shared captures, Debian's MRI) are left as they are, with a message.
@@ -119,10 +119,10 @@ figures() {
   say "the bench subset (the peers in the same run)"
   "$BUILD/bin/splat_bench" --scenes sphere,3dgs,mri,vdb --sizes 512 --backends cpu \
     --points 1000000 --output "$WORK/bench.csv" > "$WORK/bench.log"
-  say "the report (checkerboard, bunny, captures, stability)"
+  say "the report (checkerboard, bunny, mri, gaussians, vdb, captures, stability)"
   mkdir -p "$DOCS/report"
-  "$BUILD/bin/splat_report" --scenes checkerboard,bunny,captures,stability --backends cpu \
-    --output-dir "$WORK/report" > "$WORK/report.log"
+  "$BUILD/bin/splat_report" --scenes checkerboard,bunny,mri,gaussians,vdb,captures,stability \
+    --backends cpu --output-dir "$WORK/report" > "$WORK/report.log"
   cp "$WORK/report/error_vs_time.md" "$WORK/report/error_vs_time.png" \
     "$WORK/report/stability.md" "$WORK/report/captures.md" "$DOCS/report/"
   local image
