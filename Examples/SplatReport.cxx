@@ -12,7 +12,7 @@
 //   weighted by the screen low-pass filter of EWA (a Gaussian of unit variance in pixels,
 //   truncated at 3 sigma). The splats are a regular grid of surfels colored with the
 //   checkerboard's exact average over their grid cells (a box prefilter). The scene and its
-//   reference are in SplatCheckerboardScene.h, shared with TestSurfaceSplatCheckerboardError.
+//   reference are in SplatCheckerboardScene.h and SplatCheckerboardReference.h, shared with TestSurfaceSplatCheckerboardError.
 // - bunny: the Stanford bunny mesh; the reference is the mesh drawn by vtkPolyDataMapper at 4x4
 //   supersampling (4x the size, 4x4 blocks averaged); the splats come from vtkSurfelGenerator.
 // - mri, gaussians, vdb: volumes (SplatVolumeScenes.h, SplatVdbScenes.h) drawn by
@@ -21,7 +21,7 @@
 //   Gaussian mixture by fine ray marching (SplatVolumeReference.h).
 //
 // Run `splat_report --help` for the options.
-#include "SplatCheckerboardScene.h"
+#include "SplatCheckerboardReference.h"
 #include "SplatCommandLine.h"
 #include "SplatExampleUtilities.h"
 #include "SplatReportCaptures.h"

@@ -16,7 +16,7 @@
 #ifndef SplatReportDifferentialPoints_h
 #define SplatReportDifferentialPoints_h
 
-#include "SplatCheckerboardScene.h" // For CaptureWindow
+#include "SplatCheckerboardReference.h" // For CaptureWindow
 #include "SplatReportCases.h"
 #include "SplatReportImages.h"
 #include "vtkDifferentialPointGenerator.h"

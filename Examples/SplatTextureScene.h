@@ -9,7 +9,7 @@
 #ifndef SplatTextureScene_h
 #define SplatTextureScene_h
 
-#include "SplatCheckerboardScene.h"
+#include "SplatCheckerboardReference.h"
 #include "vtkSurfaceSplatMapper.h"
 #include "vtkSurfelTextureAcquisition.h"
 

@@ -18,9 +18,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <string>
 #include <sys/stat.h>
+#include <vector>
 
 namespace splattest
 {
@@ -74,6 +76,45 @@ inline void Pixel(vtkImageData* image, int x, int y, double rgb[3])
   {
     rgb[c] = data[c] / 255.0;
   }
+}
+
+/// The image's RGB as floats in [0, 1].
+inline std::vector<double> ToRGB(vtkImageData* image)
+{
+  const int* dims = image->GetDimensions();
+  std::vector<double> rgb(3 * dims[0] * dims[1]);
+  auto* data = static_cast<unsigned char*>(image->GetScalarPointer());
+  const int components = image->GetNumberOfScalarComponents();
+  for (int p = 0; p < dims[0] * dims[1]; ++p)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb[3 * p + c] = data[components * p + c] / 255.0;
+    }
+  }
+  return rgb;
+}
+
+/// Root mean square difference of two RGB images, over all channels of all pixels.
+inline double RMSE(const std::vector<double>& a, const std::vector<double>& b)
+{
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    sum += (a[i] - b[i]) * (a[i] - b[i]);
+  }
+  return std::sqrt(sum / a.size());
+}
+
+/// The largest difference of two RGB images in any channel of any pixel.
+inline double LargestDifference(const std::vector<double>& a, const std::vector<double>& b)
+{
+  double largest = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    largest = std::max(largest, std::abs(a[i] - b[i]));
+  }
+  return largest;
 }
 
 /// n surfels spread uniformly over a sphere (vtkSurfelSphereSource), a copy the test may edit.

@@ -8,7 +8,7 @@
 // baselines (circular splats without the Jacobian, unfiltered splats without the screen
 // low-pass filter) and with cutoff 4 must exceed the bound, so that the bound catches a
 // regression of the filter to any of them.
-#include "SplatCheckerboardScene.h"
+#include "SplatCheckerboardReference.h"
 #include "SplatTestUtilities.h"
 #include "vtkSurfaceSplatMapper.h"
 

@@ -3,7 +3,7 @@
 // sphere of radius 1 moved to (3e6, -2e6, 1e6), with the camera moved by the same offset,
 // gives the image of the sphere at the origin within an RMSE of 1/255 (float positions there
 // are 0.25 apart; both backends work in double precision until the data is camera-relative).
-#include "SplatCheckerboardScene.h"
+#include "SplatCheckerboardReference.h"
 #include "SplatTestUtilities.h"
 #include "vtkSplatBackend.h"
 #include "vtkSurfaceSplatMapper.h"
