@@ -6,8 +6,11 @@
 #       vtk       what the VTK modules, the examples and the Python package need (./splat demo,
 #                 bench, report, python, build vtk)
 #       paraview  vtk, plus ParaView 5.11 for the plugin (./splat build paraview|all)
-#       test      paraview, plus debootstrap (the Debian 13 test leg, scripts/debian13.sh) and the
-#                 converters the capture format tests compare against (./splat test; the default)
+#       gpu-check vtk, plus what scripts/gpu-check.sh needs to pack (a Mesa build: meson, the X and
+#                 GL headers) and to verify (debootstrap) its archive
+#       test      paraview, plus debootstrap (the Debian 13 test leg, scripts/debian-root.sh) and
+#                 the converters the capture format tests compare against (./splat test; the
+#                 default)
 #   SPLAT_DEPS_DIR=DIR   where the private ParaView files go (default: build/deps in the
 #                        repository; build/ is ignored by git)
 #
@@ -44,7 +47,7 @@ VTK_PACKAGES=(
   mricron-data libcgal-demo
 )
 # ParaView and the Qt its CMake package asks for: Debian 12's ParaView 5.11 is built with Qt 5,
-# Debian 13's 5.13 (the second test leg, scripts/debian13.sh) with Qt 6.
+# Debian 13's 5.13 (the second test leg, scripts/debian-root.sh) with Qt 6.
 PARAVIEW_PACKAGES=(paraview paraview-dev)
 if [ "$(. /etc/os-release && echo "${VERSION_CODENAME:-}")" = bookworm ]; then
   PARAVIEW_PACKAGES+=(qtbase5-dev qttools5-dev libqt5opengl5-dev libqt5svg5-dev
@@ -54,8 +57,15 @@ else
   PARAVIEW_PACKAGES+=(qt6-base-dev qt6-5compat-dev qt6-tools-dev qt6-svg-dev)
 fi
 TEST_PACKAGES=(
-  # the Debian 13 root of the second test leg (scripts/debian13.sh)
+  # the Debian 13 root of the second test leg (scripts/debian-root.sh)
   debootstrap
+)
+# scripts/gpu-check.sh: Mesa's build (the X server's GLX in the archive) and the clean root.
+GPU_CHECK_PACKAGES=(
+  meson ninja-build python3-mako bison flex libdrm-dev libx11-dev libxext-dev libxfixes-dev
+  libx11-xcb-dev libxcb-glx0-dev libxcb-dri2-0-dev libxcb-dri3-dev libxcb-present-dev
+  libxcb-shm0-dev libxcb-randr0-dev libxshmfence-dev libxxf86vm-dev libxrandr-dev
+  libexpat1-dev libglvnd-dev x11-xkb-utils debootstrap
 )
 CAPTURE_TOOLS=(@playcanvas/splat-transform@3.7.0 @mkkellogg/gaussian-splats-3d@0.4.7 three@0.160.0)
 
@@ -74,7 +84,8 @@ case "$PROFILE" in
   vtk) packages=("${VTK_PACKAGES[@]}") ;;
   paraview) packages=("${VTK_PACKAGES[@]}" "${PARAVIEW_PACKAGES[@]}") ;;
   test) packages=("${VTK_PACKAGES[@]}" "${PARAVIEW_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
-  *) die "unknown profile '$PROFILE' (vtk, paraview or test)" ;;
+  gpu-check) packages=("${VTK_PACKAGES[@]}" "${GPU_CHECK_PACKAGES[@]}") ;;
+  *) die "unknown profile '$PROFILE' (vtk, paraview, gpu-check or test)" ;;
 esac
 
 SUDO=()
@@ -125,7 +136,7 @@ if [ "${#missing[@]}" -gt 0 ]; then
   "${APT[@]}" install --no-install-recommends "${missing[@]}" >&2
 fi
 
-[ "$PROFILE" = vtk ] && exit 0
+case "$PROFILE" in vtk|gpu-check) exit 0 ;; esac
 
 # --- ParaView's Python package, unpacked --------------------------------------------------------
 pv_version="$(pkg_version paraview)"

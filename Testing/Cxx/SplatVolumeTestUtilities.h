@@ -5,12 +5,12 @@
 #define SplatVolumeTestUtilities_h
 
 #include "SplatTestUtilities.h"
+#include "SplatVolumeScenes.h" // MriHead
 
 #include "vtkAbstractVolumeMapper.h"
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
-#include "vtkNIFTIImageReader.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlaneSource.h"
 #include "vtkPolyDataMapper.h"
@@ -280,20 +280,17 @@ RenderedVolume RenderVolume(vtkAbstractVolumeMapper* mapper, vtkImageData* image
   return { ToRGB(Capture(window)), best };
 }
 
-/// The MRI head ch2.nii.gz of Debian's mricron-data, or null when the file is absent.
+/// The MRI head of splat_bench and splat_render (splatexample::MriFile: Debian's mricron-data, or
+/// $SPLAT_MRI_FILE), or null when the file is absent.
 inline vtkSmartPointer<vtkImageData> ReadMri()
 {
-  const std::string path = "/usr/share/mricron/templates/ch2.nii.gz";
-  if (!FileExists(path))
+  vtkSmartPointer<vtkImageData> image = splatexample::MriHead(1);
+  if (!image)
   {
     std::printf("%s is absent (Debian package mricron-data): MRI comparison skipped\n",
-      path.c_str());
-    return nullptr;
+      splatexample::MriFile().c_str());
   }
-  vtkNew<vtkNIFTIImageReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  return reader->GetOutput();
+  return image;
 }
 
 /// The MRI tests' camera: from below and the side, framing the head.
