@@ -179,9 +179,14 @@ cmd_run() {
     echo "GLX vendor library: none of the GPU's; the archive's Mesa (softpipe)" >>"$summary"
   fi
   # Xvfb runs the keymap compiler from the path it was built with.
-  [ -x /usr/bin/xkbcomp ] || ln -sf "$R/bin/xkbcomp" /usr/bin/xkbcomp
+  if [ ! -x /usr/bin/xkbcomp ] && ! ln -sf "$R/bin/xkbcomp" /usr/bin/xkbcomp; then
+    echo "cannot link /usr/bin/xkbcomp (not root?): the X server may not start" >>"$summary"
+  fi
   local display=77
-  while [ -e "/tmp/.X11-unix/X$display" ] || [ -e "/tmp/.X$display-lock" ]; do
+  # A display is taken when its socket or lock file is there, or its abstract socket (shared
+  # with other roots on the machine).
+  while [ -e "/tmp/.X11-unix/X$display" ] || [ -e "/tmp/.X$display-lock" ] \
+    || grep -q "@/tmp/.X11-unix/X$display\$" /proc/net/unix 2>/dev/null; do
     display=$((display + 1))
   done
   "$R/bin/Xvfb" ":$display" -screen 0 1280x1024x24 -nolisten tcp -noreset \
@@ -193,6 +198,12 @@ cmd_run() {
     [ -e "/tmp/.X11-unix/X$display" ] && break
     sleep 0.2
   done
+  if [ ! -e "/tmp/.X11-unix/X$display" ]; then
+    echo "the X server did not start:" >>"$summary"
+    tail -n 20 "$out/xvfb.log" >>"$summary"
+    cat "$summary" >&2
+    return 1
+  fi
   export DISPLAY=":$display"
   if command -v nvidia-smi >/dev/null 2>&1; then
     nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader >>"$summary" || true
