@@ -161,8 +161,10 @@ cmd_run() {
   fi
   head -n 2 "$R/MANIFEST" >>"$summary"
 
-  export LD_LIBRARY_PATH="$R/lib"
-  export LIBGL_DRIVERS_PATH="$R/lib/dri"
+  # Only the archive's programs see its libraries (the machine's own tools keep theirs): the X
+  # server with the archive's Mesa, the programs with the GPU's GLX vendor library too.
+  local x_env=(env "LD_LIBRARY_PATH=$R/lib" "LIBGL_DRIVERS_PATH=$R/lib/dri")
+  local run_env=("${x_env[@]}")
   # The GPU's GLX vendor library, where the driver put it.
   local vendor="" candidate
   for candidate in /usr/local/nvidia/lib64 /usr/local/nvidia/lib /usr/lib/x86_64-linux-gnu; do
@@ -172,8 +174,8 @@ cmd_run() {
     fi
   done
   if [ -n "$vendor" ]; then
-    LD_LIBRARY_PATH="$LD_LIBRARY_PATH:$(dirname "$vendor")"
-    export __GLX_VENDOR_LIBRARY_NAME=nvidia
+    run_env=(env "LD_LIBRARY_PATH=$R/lib:$(dirname "$vendor")" "LIBGL_DRIVERS_PATH=$R/lib/dri"
+      __GLX_VENDOR_LIBRARY_NAME=nvidia)
     echo "GLX vendor library: $vendor" >>"$summary"
   else
     echo "GLX vendor library: none of the GPU's; the archive's Mesa (softpipe)" >>"$summary"
@@ -189,7 +191,7 @@ cmd_run() {
     || grep -q "@/tmp/.X11-unix/X$display\$" /proc/net/unix 2>/dev/null; do
     display=$((display + 1))
   done
-  "$R/bin/Xvfb" ":$display" -screen 0 1280x1024x24 -nolisten tcp -noreset \
+  "${x_env[@]}" "$R/bin/Xvfb" ":$display" -screen 0 1280x1024x24 -nolisten tcp -noreset \
     -xkbdir "$R/share/X11/xkb" >"$out/xvfb.log" 2>&1 &
   XVFB_PID=$!
   MEMORY_PID=""
@@ -227,7 +229,8 @@ cmd_run() {
     printf '\n=== %s: %s\n' "$name" "$*" >>"$log"
     local start=$SECONDS status=0
     # Line-buffered, so that a program cut off leaves what it printed.
-    timeout --kill-after=10 "$limit" stdbuf -oL -eL "$@" >>"$log" 2>&1 || status=$?
+    timeout --kill-after=10 "$limit" stdbuf -oL -eL "${run_env[@]}" "$@" >>"$log" 2>&1 \
+      || status=$?
     local outcome="passed"
     [ "$status" -eq 0 ] || { outcome="FAILED (exit $status)"; failed+=("$name"); }
     [ "$status" -eq 124 ] && outcome="CUT OFF after ${limit} s"
