@@ -61,11 +61,14 @@ TEST_PACKAGES=(
   debootstrap
 )
 # scripts/gpu-check.sh: Mesa's build (the X server's GLX in the archive) and the clean root.
+# Not libexpat1-dev, which Mesa also needs: VTK's packages bring it, and installing it by name
+# upgrades libexpat1, whose reparse deferral (2.5.0-1+deb12u2 on) breaks the XML that
+# ParaView 5.11 sends between MPI ranks (SplatPlugin.RepresentationsMPI fails).
 GPU_CHECK_PACKAGES=(
   meson ninja-build python3-mako bison flex libdrm-dev libx11-dev libxext-dev libxfixes-dev
   libx11-xcb-dev libxcb-glx0-dev libxcb-dri2-0-dev libxcb-dri3-dev libxcb-present-dev
   libxcb-shm0-dev libxcb-randr0-dev libxshmfence-dev libxxf86vm-dev libxrandr-dev
-  libexpat1-dev libglvnd-dev x11-xkb-utils debootstrap
+  libglvnd-dev x11-xkb-utils debootstrap
 )
 CAPTURE_TOOLS=(@playcanvas/splat-transform@3.7.0 @mkkellogg/gaussian-splats-3d@0.4.7 three@0.160.0)
 
