@@ -96,6 +96,15 @@ struct Float8
     return Float8(less.V < than.V ? a.V : b.V);
   }
 
+  /// Whether any lane of `less` is below the one of `than`.
+  SPLAT_FLOAT8 static bool AnyLess(const Float8& less, const Float8& than)
+  {
+    const Integers mask = less.V < than.V;
+    const Integers half = mask | __builtin_shufflevector(mask, mask, 4, 5, 6, 7, 0, 1, 2, 3);
+    const Integers quarter = half | __builtin_shufflevector(half, half, 2, 3, 0, 1, 6, 7, 4, 5);
+    return (quarter[0] | quarter[1]) != 0;
+  }
+
   /// The channels of eight consecutive four-float pixels from p, a Float8 each: pixel i in lane
   /// i. Each pixel is read as one 16-byte load, so that a load of a pixel stored by an earlier
   /// StoreChannels (or a glm::vec4 store) at another group's offset is forwarded from the store.
@@ -236,6 +245,15 @@ struct Float8
       a.V[i] = less.V[i] < than.V[i] ? a.V[i] : b.V[i];
     }
     return a;
+  }
+  static bool AnyLess(const Float8& less, const Float8& than)
+  {
+    bool any = false;
+    for (int i = 0; i < 8; ++i)
+    {
+      any = any || less.V[i] < than.V[i];
+    }
+    return any;
   }
   static Float8 NegativeExponential(Float8 x)
   {

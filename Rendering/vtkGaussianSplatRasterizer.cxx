@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 vtkStandardNewMacro(vtkGaussianSplatRasterizer);
 
@@ -59,20 +60,60 @@ std::uint64_t TileEntry(float depth, vtkIdType id)
   return static_cast<std::uint64_t>(SortKey(depth)) << 32 | static_cast<std::uint32_t>(id);
 }
 
+// Sorts a tile's entries by their depth keys (the high halves), keeping the order of equal keys:
+// an LSD radix sort of 11-bit digits, a pass left out where all entries share its digit. The
+// lists are short and already in id order, so this gives std::sort's order at a third of its
+// cost. `scratch` holds at least `count` entries.
+void SortByDepth(std::uint64_t* entries, std::size_t count, std::uint64_t* scratch)
+{
+  constexpr int DigitBits = 11;
+  constexpr std::uint64_t DigitMask = (1u << DigitBits) - 1;
+  std::uint64_t* from = entries;
+  std::uint64_t* to = scratch;
+  for (int shift = 32; shift < 64 && count > 1; shift += DigitBits)
+  {
+    std::uint32_t places[DigitMask + 1] = {};
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      ++places[from[i] >> shift & DigitMask];
+    }
+    if (places[from[0] >> shift & DigitMask] == count)
+    {
+      continue;
+    }
+    std::uint32_t next = 0;
+    for (std::uint32_t& place : places)
+    {
+      next += std::exchange(place, next);
+    }
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      to[places[from[i] >> shift & DigitMask]++] = from[i];
+    }
+    std::swap(from, to);
+  }
+  if (from != entries)
+  {
+    std::copy_n(from, count, entries);
+  }
+}
+
 const ScreenSplat* KernelOf(const ScreenSplat* splats, std::uint64_t entry)
 {
   return splats + (entry & 0xffffffffu);
 }
 
 // Composites one tile's kernels (sorted entries) front to back into the tile of the image
-// whose lower left pixel is (x0, y0). The tile's transmittance is kept negated once a pixel
-// stops, so that one comparison per lane tells both.
+// whose lower left pixel is (x0, y0). A pixel's transmittance is kept negated once it stops (and
+// from the start outside the image), so that one comparison per lane tells both; a group of
+// eight pixels of a row is skipped once all its pixels stop, and the tile ends when all do.
 SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uint64_t* entries,
   std::size_t count, int x0, int y0, int width, int height, const float* sceneDepths,
   glm::vec4* image)
 {
   using splat::Float8;
   constexpr int Pixels = TileSize * TileSize;
+  constexpr int Groups = TileSize / Lanes;
   const int columns = std::min(TileSize, width - x0);
   const int rows = std::min(TileSize, height - y0);
   alignas(32) float transmittance[Pixels];
@@ -81,35 +122,32 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
   alignas(32) float blue[Pixels] = {};
   alignas(32) float scene[Pixels];
   alignas(32) float alphas[Pixels]; // one kernel's, over its rows in the tile
-  std::fill_n(transmittance, Pixels, 1.0f);
+  bool open[TileSize][Groups];
+  int openGroups = 0;
+  for (int y = 0; y < TileSize; ++y)
+  {
+    for (int x = 0; x < TileSize; ++x)
+    {
+      transmittance[y * TileSize + x] = x < columns && y < rows ? 1.0f : -1.0f;
+    }
+    for (int g = 0; g < Groups; ++g)
+    {
+      open[y][g] = y < rows && g * Lanes < columns;
+      openGroups += open[y][g];
+    }
+  }
   std::fill_n(scene, Pixels, std::numeric_limits<float>::infinity());
   for (int y = 0; sceneDepths && y < rows; ++y)
   {
     std::copy_n(sceneDepths + static_cast<std::size_t>(y0 + y) * width + x0, columns,
       scene + y * TileSize);
   }
-  bool rowOpen[TileSize] = {};
-  std::fill_n(rowOpen, rows, true);
   const Float8 minimumAlpha(splat::CaptureMinimumAlpha);
   const Float8 maximumAlpha(splat::CaptureMaximumAlpha);
   const Float8 minimumTransmittance(splat::CaptureMinimumTransmittance);
-  for (std::size_t n = 0; n < count; ++n)
+  const Float8 zero(0.0f);
+  for (std::size_t n = 0; n < count && openGroups > 0; ++n)
   {
-    // Every 32 kernels: which rows still integrate; the tile ends when none does.
-    if (n % 32 == 31)
-    {
-      bool open = false;
-      for (int y = 0; y < rows; ++y)
-      {
-        const float* t = transmittance + y * TileSize;
-        rowOpen[y] = std::any_of(t, t + columns, [](float v) { return v > 0.0f; });
-        open = open || rowOpen[y];
-      }
-      if (!open)
-      {
-        break;
-      }
-    }
     // The tile's kernels lie all over memory (the depth order is not the input's): fetched
     // ahead, they come while the kernels before them are composited.
     if (n + PrefetchDistance < count)
@@ -137,6 +175,10 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
       const float rowTerm = s.ConicYY * dy * dy;
       for (int g = ga; g <= gb; ++g)
       {
+        if (!open[y][g])
+        {
+          continue;
+        }
         const int p = y * TileSize + g * Lanes;
         const Float8 column = Float8::Iota() + static_cast<float>(g * Lanes);
         const Float8 dx = column + offsetX;
@@ -151,12 +193,12 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
     }
     for (int y = ya; y <= yb; ++y)
     {
-      if (!rowOpen[y])
-      {
-        continue;
-      }
       for (int g = ga; g <= gb; ++g)
       {
+        if (!open[y][g])
+        {
+          continue;
+        }
         const int p = y * TileSize + g * Lanes;
         const Float8 alpha = Float8::Load(alphas + p);
         const Float8 t = Float8::Load(transmittance + p);
@@ -165,10 +207,16 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
         // (stopped pixels hold their transmittance negated, so `next` is negative there).
         const Float8 weight = Float8::SelectLess(next, minimumTransmittance, 0.0f, alpha * t);
         const Float8 stopped = Float8::SelectLess(t, 0.0f, t, 0.0f - t);
-        Float8::SelectLess(next, minimumTransmittance, stopped, next).Store(transmittance + p);
+        const Float8 kept = Float8::SelectLess(next, minimumTransmittance, stopped, next);
+        kept.Store(transmittance + p);
         (Float8::Load(red + p) + weight * s.Color[0]).Store(red + p);
         (Float8::Load(green + p) + weight * s.Color[1]).Store(green + p);
         (Float8::Load(blue + p) + weight * s.Color[2]).Store(blue + p);
+        if (!Float8::AnyLess(zero, kept))
+        {
+          open[y][g] = false;
+          --openGroups;
+        }
       }
     }
   }
@@ -341,11 +389,13 @@ void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels&
   vtkSMPTools::For(0, tiles,
     [&](vtkIdType begin, vtkIdType end)
     {
+      std::vector<std::uint64_t> scratch;
       for (vtkIdType tile = begin; tile < end; ++tile)
       {
         std::uint64_t* first = internal.TileEntries.data() + internal.TileOffsets[tile];
         std::uint64_t* last = internal.TileEntries.data() + internal.TileOffsets[tile + 1];
-        std::sort(first, last);
+        scratch.resize(std::max<std::size_t>(scratch.size(), last - first));
+        SortByDepth(first, last - first, scratch.data());
         CompositeTile(internal.Splats.data(), first, last - first,
           static_cast<int>(tile % tilesX) * TileSize,
           static_cast<int>(tile / tilesX) * TileSize, width, height, sceneDepths, image.data());
