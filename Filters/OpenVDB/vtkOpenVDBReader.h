@@ -43,8 +43,9 @@
  *   vertex cell per point; other attribute types are left out with a warning.
  *
  * Voxels with a non-finite value and surfels with a non-finite or zero gradient are skipped and
- * counted (GetNumberOfSkippedValues). Surfels also get one vertex cell per point; volume kernels
- * get no cells (they are drawn by vtkVolumeSplatMapper from the points).
+ * counted (GetNumberOfSkippedValues). Surfels and volume kernels also get one vertex cell per
+ * point (32-bit ids): vtkVolumeSplatMapper draws kernels from the points, but ParaView's default
+ * representation shows cells, and its volume opacity unit distance follows their number.
  *
  * With ProduceDenseOutput on, output port 1 is a vtkImageData of the grid's values (vector grids:
  * the vectors and their magnitude as scalars) over DenseIndexBounds (index space, inclusive; by

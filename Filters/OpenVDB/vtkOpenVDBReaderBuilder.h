@@ -19,7 +19,6 @@
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
-#include "vtkIdTypeArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
@@ -28,6 +27,8 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkTypeTraits.h"
 
 #include <openvdb/math/Operators.h>
@@ -40,6 +41,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -155,19 +157,33 @@ struct ValueArrays
   }
 };
 
-/// One vertex cell per point.
-inline void AddVertices(vtkPolyData* output)
+/// One vertex cell per point, in 32-bit ids where they fit (8 bytes a point).
+template <typename ArrayT>
+void AddVertices(vtkPolyData* output)
 {
+  using Id = typename ArrayT::ValueType;
   const vtkIdType n = output->GetNumberOfPoints();
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
+  vtkNew<ArrayT> offsets;
+  vtkNew<ArrayT> connectivity;
   offsets->SetNumberOfValues(n + 1);
   connectivity->SetNumberOfValues(n);
-  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + n + 1, vtkIdType(0));
-  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + n, vtkIdType(0));
+  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + n + 1, Id(0));
+  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + n, Id(0));
   vtkNew<vtkCellArray> vertices;
   vertices->SetData(offsets, connectivity);
   output->SetVerts(vertices);
+}
+
+inline void AddVertices(vtkPolyData* output)
+{
+  if (output->GetNumberOfPoints() < std::numeric_limits<vtkTypeInt32>::max())
+  {
+    AddVertices<vtkTypeInt32Array>(output);
+  }
+  else
+  {
+    AddVertices<vtkTypeInt64Array>(output);
+  }
 }
 
 /// The world box of a grid's transform: spacing, origin and direction of an image.
@@ -340,6 +356,10 @@ struct vtkOpenVDBReaderBuilder
     this->Reader->UpdateProgress(1.0);
 
     output->SetPoints(points);
+    // Vertex cells, although the kernels are drawn from the points: ParaView's default Surface
+    // representation then shows them, and its volume opacity unit distance (the bounds'
+    // diagonal over the cube root of the cells) comes out about a voxel.
+    splatvdb::AddVertices(output);
     output->GetPointData()->AddArray(covariances);
     output->GetPointData()->AddArray(volumes);
     values.AddTo(output->GetPointData());

@@ -5,6 +5,7 @@
 #include "vtkOpenVDBReader.h"
 
 #include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
@@ -108,6 +109,10 @@ void ExpectVoxelKernels(vtkPolyData* output, const openvdb::FloatGrid& grid, dou
   vtkDataArray* scalars = output->GetPointData()->GetScalars();
   ASSERT_TRUE(covariance && volume && scalars);
   EXPECT_STREQ(scalars->GetName(), grid.getName().c_str());
+  // One vertex cell per kernel, in 32-bit ids (ParaView's Surface shows them).
+  EXPECT_EQ(output->GetNumberOfVerts(), output->GetNumberOfPoints());
+  EXPECT_EQ(output->GetNumberOfCells(), output->GetNumberOfPoints());
+  EXPECT_FALSE(output->GetVerts()->IsStorage64Bit());
   auto accessor = grid.getConstAccessor();
   for (vtkIdType id = 0; id < output->GetNumberOfPoints(); ++id)
   {

@@ -13,14 +13,17 @@ Checks that
   and the values (VoxelIndex while the tile is its voxels, TileSubdivision 8), the level
   set's surfels with Normals and SurfelRadiusScale x voxel size radii,
   the point grid's 5 points and their attribute; ProduceDenseOutput and DenseIndexBounds give
-  the 4 x 3 x 2 image of the fog's values on port 1;
+  the 4 x 3 x 2 image of the fog's values on port 1; the fog's kernels have a vertex cell each,
+  so that Show's Surface draws them and Volume Splats' opacity unit distance is the bounds'
+  diagonal over the cube root of the kernels;
 - the reader sends progress events from 0 to 1 and ParaView's progress handler (what the
   progress bar shows) relays them;
 - a truncated .vdb and a text file named .vdb give an error naming the file and empty output;
 - OpenDataFile picks Gaussian Splat Reader for a 3D Gaussian Splatting .ply (and for .splat;
   with --capture-tools, for the .spz, .sog and its meta.json, glTF and compressed .ply that
   splat-transform converts the capture to), and its File > Open lines name each format,
-  with the Scale, Rotation, Opacity and Color arrays decoded, and ParaView's PLY Reader for a
+  with the Scale, Rotation, Opacity and Color arrays decoded, and Show picking Volume Splats
+  for it (the reader's hint: a capture has no cells), and ParaView's PLY Reader for a
   PLY mesh, which Gaussian Splat Reader declines; Splat PLY Reader, created explicitly, reads the
   mesh; a truncated capture and a truncated mesh give errors naming the file, not crashes;
 - every class of the SplatFilters and SplatOpenVDB modules has a proxy, the filter and the
@@ -98,6 +101,27 @@ def reader_accepts(servermanager, path, name):
 
 
 # -- OpenVDB ----------------------------------------------------------------------------------
+def first_view_of_fog(simple, reader):
+    """Fog kernels come with one vertex cell each: Show's default Surface draws them, and Volume
+    Splats' opacity unit distance is ParaView's approximate cell length, the bounds' diagonal
+    over the cube root of the cells (without cells: the whole diagonal)."""
+    cells = reader.GetDataInformation().GetNumberOfCells()
+    check(cells == point_count(reader),
+          "fog: one vertex cell per kernel (%d cells, %d kernels)" % (cells, point_count(reader)))
+    view = simple.CreateRenderView()
+    display = simple.Show(reader, view)
+    check(display.Representation == "Surface", "fog: Show picks Surface (got %s)"
+          % display.Representation)
+    display.SetRepresentationType("Volume Splats")
+    unit = display.ScalarOpacityUnitDistance
+    b = reader.GetDataInformation().GetBounds()
+    expected = math.sqrt(sum((b[2 * i + 1] - b[2 * i]) ** 2 for i in range(3))) / cells ** (1 / 3)
+    check(close(unit, expected, 1e-3), "fog: Volume Splats' opacity unit distance %g, the "
+          "diagonal over the cube root of the kernels (got %g)" % (expected, unit))
+    simple.Delete(display)
+    simple.Delete(view)
+
+
 def test_vdb(simple, servermanager, writer, tmp):
     path = os.path.join(tmp, "scene.vdb")
     result = subprocess.run([writer, path], capture_output=True, text=True)
@@ -139,6 +163,7 @@ def test_vdb(simple, servermanager, writer, tmp):
     check(info_value(reader.SMProxy, "NumberOfVoxelKernels") == 24
           and info_value(reader.SMProxy, "NumberOfTiles") == 1,
           "the reader's statistics: 24 voxel kernels, 1 tile")
+    first_view_of_fog(simple, reader)
     reader.TileSubdivision = 3
     reader.UpdatePipeline()
     check(point_count(reader) == 24 + 27,
@@ -293,6 +318,13 @@ def test_gaussian_splats(simple, servermanager, tmp):
               % (name, low, high, got))
     check(info_value(reader.SMProxy, "SphericalHarmonicsDegree") == 0,
           "capture: spherical harmonics degree 0")
+    # Captures have no cells: Show picks Volume Splats (the reader's hint), not Surface.
+    view = simple.CreateRenderView()
+    display = simple.Show(reader, view)
+    check(display.Representation == "Volume Splats",
+          "capture: Show picks Volume Splats (got %s)" % display.Representation)
+    simple.Delete(display)
+    simple.Delete(view)
 
     splat = os.path.join(tmp, "capture.splat")
     write_splat(splat, 3)
