@@ -207,13 +207,17 @@ inline vtkSmartPointer<vtkImageData> MriHead(int shrink)
   }
   vtkNew<vtkNIFTIImageReader> reader;
   reader->SetFileName(file.c_str());
+  if (shrink <= 1)
+  {
+    reader->Update();
+    return reader->GetOutput();
+  }
   vtkNew<vtkImageShrink3D> shrinker;
   shrinker->SetInputConnection(reader->GetOutputPort());
   shrinker->SetShrinkFactors(shrink, shrink, shrink);
   shrinker->AveragingOn();
   shrinker->Update();
-  vtkSmartPointer<vtkImageData> image = shrinker->GetOutput();
-  return image;
+  return shrinker->GetOutput();
 }
 
 /// TestVolumeSplatCrossRenderer's transfer functions: soft tissue faint and reddish, the rest
