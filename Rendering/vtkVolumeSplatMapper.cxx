@@ -692,15 +692,30 @@ bool vtkVolumeSplatMapper::BuildLatticeKernels(vtkPointSet* input, vtkVolumeProp
     return false;
   }
   const vtkIdType count = input->GetNumberOfPoints();
-  glm::ivec3 low(std::numeric_limits<int>::max()), high(std::numeric_limits<int>::min());
+  glm::dvec3 lowest(std::numeric_limits<double>::max());
+  glm::dvec3 highest(std::numeric_limits<double>::lowest());
   for (vtkIdType i = 0; i < count; ++i)
   {
     double index[3];
     indices->GetTuple(i, index);
-    low = glm::min(low, glm::ivec3(index[0], index[1], index[2]));
-    high = glm::max(high, glm::ivec3(index[0], index[1], index[2]));
+    lowest = glm::min(lowest, glm::dvec3(index[0], index[1], index[2]));
+    highest = glm::max(highest, glm::dvec3(index[0], index[1], index[2]));
   }
-  // The kernels' box of the lattice is the grid: ids over it, sorted, hold the sheets.
+  // The kernels' box of the lattice is the grid: ids over it, sorted, hold the sheets, and the
+  // sheets' tables have an entry per line of it along each axis. Kernels so scattered that the
+  // lines outnumber them by far (or indices beyond int) are drawn one by one instead.
+  const glm::dvec3 span = highest - lowest + 1.0;
+  const double lines = std::max({ span.x * span.y, span.y * span.z, span.z * span.x });
+  if (!(lines <= 8.0 * static_cast<double>(count) + (1 << 22)) ||
+    glm::any(glm::lessThan(lowest, glm::dvec3(std::numeric_limits<int>::min()))) ||
+    glm::any(glm::greaterThan(highest, glm::dvec3(std::numeric_limits<int>::max()))))
+  {
+    vtkWarningMacro("The VoxelIndex box of " << count << " kernels has " << lines
+                                             << " lines along an axis: the kernels are drawn "
+                                                "one by one, off the lattice.");
+    return this->BuildPointKernels(input, property);
+  }
+  const glm::ivec3 low(lowest), high(highest);
   const glm::ivec3 dims = high - low + 1;
   const vtkIdType nx = dims.x, ny = dims.y;
   auto idOf = [&](const glm::ivec3& at)

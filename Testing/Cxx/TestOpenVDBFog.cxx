@@ -8,6 +8,7 @@
 //   the mapper draws them through the sheets, as image data; without the lattice (the
 //   per-kernel path) the image agrees within MAX_LATTICE_RMSE, and shaded (normals from the
 //   sparse grid's neighbors) it agrees with the shaded image data as closely;
+// - kernels whose VoxelIndex box is far too large for sheet tables take the per-kernel path;
 // - a grid with active tiles renders like its voxelized copy (MAX_TILE_RMSE) with at most
 //   MAX_TILE_KERNEL_RATIO of its kernels for TileSubdivision 2, and exactly like it with the
 //   default 8 (leaf-sized tiles become their voxels);
@@ -112,6 +113,7 @@ struct Options
   int TileSubdivision = 8;
   bool SampleVolume = true; // off: the SampleVolume array removed
   bool Lattice = true;      // off: the VoxelIndex array removed
+  bool Scattered = false;   // on: one kernel's VoxelIndex moved a million voxels away
   bool Shaded = false;
   vtkIdType* Kernels = nullptr; // the reader's kernels
   bool* SheetsUsed = nullptr;   // whether the frame went through the sheets
@@ -133,6 +135,15 @@ std::vector<double> RenderFile(const std::string& path, const openvdb::Vec3d& ce
   if (!options.Lattice)
   {
     data->GetPointData()->RemoveArray("VoxelIndex");
+  }
+  if (options.Scattered)
+  {
+    vtkSmartPointer<vtkDataArray> indices;
+    indices.TakeReference(data->GetPointData()->GetArray("VoxelIndex")->NewInstance());
+    indices->DeepCopy(data->GetPointData()->GetArray("VoxelIndex"));
+    indices->SetComponent(0, 1, indices->GetComponent(0, 1) + 1e6);
+    indices->SetComponent(0, 2, indices->GetComponent(0, 2) - 1e6);
+    data->GetPointData()->AddArray(indices);
   }
   if (options.Kernels)
   {
@@ -235,6 +246,14 @@ int main(int argc, char* argv[])
   const std::vector<double> kernelImage =
     RenderFile(fogPath, center, 1.0, "per_kernel", perKernel);
   Check(!sheets, "without VoxelIndex, the per-kernel path", sheets);
+  // Indices whose box would need 10^12 lines of sheet tables: the per-kernel path, unchanged.
+  Options scattered;
+  scattered.Scattered = true;
+  scattered.SheetsUsed = &sheets;
+  const double scatteredRMSE = splattest::RMSE(
+    RenderFile(fogPath, center, 1.0, "scattered", scattered), kernelImage);
+  Check(!sheets && scatteredRMSE <= 1e-6,
+    "VoxelIndex scattered a million voxels apart: per-kernel path, RMSE", scatteredRMSE);
   const double latticeRMSE = splattest::RMSE(fromGrid, kernelImage);
   Check(latticeRMSE <= MAX_LATTICE_RMSE, "lattice vs per-kernel RMSE", latticeRMSE);
   // Shaded: normals from the sparse grid's neighbors, against those of the image data.
