@@ -157,6 +157,8 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
                        (about 6 GB and 15 minutes on 2 cores)
   --output FILE        CSV file, also written to stdout (default output/bench/bench.csv)
   --image-dir DIR      also write each case's last frame as a PNG into DIR
+  --gpu-timings        print the GPU time of each render pass of a case's last timed frame to
+                       stderr (vtkRenderWindow's render timer log: OpenGL timer queries)
   --case K             run only the K-th case (from 0, in the order of the rows) of the one
                        scene, size and point count given, in this process, and write its row
                        (peer_ratio empty) to --output: what each case's process runs
@@ -237,6 +239,7 @@ Options ParseCommandLine(int argc, char* argv[])
   };
 
   const std::map<std::string, std::function<void()>> flags = {
+    { "--gpu-timings", [&] { options.GpuTimings = true; } },
     { "--quick",
       [&]
       {

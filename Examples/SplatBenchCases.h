@@ -15,6 +15,7 @@
 #include "vtkCamera.h"
 #include "vtkDataSet.h"
 #include "vtkProp3D.h"
+#include "vtkRenderTimerLog.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
@@ -57,6 +58,7 @@ struct Options
   std::string Output = "output/bench/bench.csv";
   std::string ImageDir;
   int Case = -1; // --case: run only this case of the one scene and size, in this process
+  bool GpuTimings = false; // --gpu-timings
 };
 
 struct MapperKind
@@ -126,6 +128,8 @@ inline double MillisecondsPerFrame(vtkRenderWindow* window, const Options& optio
   window->Render();
   window->WaitForCompletion();
   firstMilliseconds = std::chrono::duration<double, std::milli>(Clock::now() - firstStart).count();
+  vtkRenderTimerLog* timer = window->GetRenderTimer();
+  timer->SetLoggingEnabled(options.GpuTimings && timer->IsSupported());
   std::vector<double> ms;
   const auto start = Clock::now();
   while (static_cast<int>(ms.size()) < maxFrames &&
@@ -145,6 +149,20 @@ inline double MillisecondsPerFrame(vtkRenderWindow* window, const Options& optio
     ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - frameStart).count());
   }
   frames = static_cast<int>(ms.size());
+  if (timer->GetLoggingEnabled())
+  {
+    // The GPU time of each pass of the last timed frame (OpenGL timer queries).
+    timer->MarkFrame();
+    window->WaitForCompletion();
+    vtkRenderTimerLog::Frame last;
+    while (timer->FrameReady())
+    {
+      last = timer->PopFirstReadyFrame();
+    }
+    std::cerr << "GPU times of the last frame, ms:\n";
+    last.Print(std::cerr);
+    timer->LoggingEnabledOff();
+  }
   return splatexample::Median(ms);
 }
 

@@ -15,7 +15,7 @@
  *   filter's variance on the diagonal;
  * - alpha(x) = min(0.99, opacity exp(-1/2 d^T Conic d)), d = x - center, contributions below
  *   1/255 skipped, evaluated within a square of half-size ceil(3 sqrt(lambda_max)) pixels;
- * - front to back in the order of the centers' depths, each pixel stopping before the kernel
+ * - front to back in the order of the centers' depths (DepthOrderKey), each pixel stopping before the kernel
  *   that would take its transmittance below 1e-4.
  *
  * Pixel (i, j) has its center at (i + 0.5, j + 0.5), as in SplatVolumeKernel.h; the reference's
@@ -32,6 +32,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace splat
 {
@@ -161,6 +163,26 @@ inline CaptureSkip MakeCaptureFootprint(const glm::dmat4& eyeToClip, const glm::
            static_cast<int>(viewport.y), out.Box)
     ? CaptureSkip::Kept
     : CaptureSkip::OutsideView;
+}
+
+/**
+ * A float's bits as an unsigned key of the same order (negative floats included).
+ */
+inline std::uint32_t SortKey(float value)
+{
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, sizeof(bits));
+  return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+}
+
+/**
+ * A kernel's depth as a sort key in the high half and its index in the low half: sorting such
+ * keys orders the kernels front to back, equal depths by index (std::stable_sort's order by
+ * depth, from integer comparisons that parallel and radix sorts can use).
+ */
+inline std::uint64_t DepthOrderKey(float depth, std::uint32_t index)
+{
+  return static_cast<std::uint64_t>(SortKey(depth)) << 32 | index;
 }
 
 } // namespace splat

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -43,21 +42,6 @@ SPLAT_ALWAYS_INLINE void Prefetch(const ScreenSplat* s)
 #else
   (void)s;
 #endif
-}
-
-// A float's bits as an unsigned key of the same order (negative floats included).
-std::uint32_t SortKey(float value)
-{
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof(bits));
-  return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
-}
-
-// A tile's entry: the kernel's depth as a sort key in the high half, its id in the low half,
-// so that sorting the entries orders them by depth, ties by id.
-std::uint64_t TileEntry(float depth, vtkIdType id)
-{
-  return static_cast<std::uint64_t>(SortKey(depth)) << 32 | static_cast<std::uint32_t>(id);
 }
 
 // Sorts a tile's entries by their depth keys (the high halves), keeping the order of equal keys:
@@ -244,7 +228,7 @@ struct vtkGaussianSplatRasterizer::Internals
   // Per input kernel: its footprint, and why it is left out.
   std::vector<ScreenSplat> Splats;
   std::vector<splat::CaptureSkip> Skips;
-  // Per tile, its entries (TileEntry): TileOffsets[t] to TileOffsets[t + 1].
+  // Per tile, its entries (splat::DepthOrderKey of depth and id): TileOffsets[t] to TileOffsets[t + 1].
   std::vector<std::size_t> TileOffsets;
   std::vector<std::uint64_t> TileEntries;
 };
@@ -388,7 +372,7 @@ void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels&
         std::size_t* place = places.data() + c * tiles;
         forEachEntry(c,
           [&](vtkIdType i, vtkIdType tile)
-          { internal.TileEntries[place[tile]++] = TileEntry(internal.Splats[i].Depth, i); });
+          { internal.TileEntries[place[tile]++] = splat::DepthOrderKey(internal.Splats[i].Depth, static_cast<std::uint32_t>(i)); });
       }
     });
 

@@ -11,6 +11,7 @@
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexArrayObject.h"
+#include "vtkRenderTimerLog.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
@@ -425,9 +426,13 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
   state->vtkglClear(GL_COLOR_BUFFER_BIT);
   state->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
 
+  // GPU times of the passes, for vtkRenderWindow::GetRenderTimer() (when its logging is on).
+  vtkRenderTimerLog* timer = window->GetRenderTimer();
+  VTK_SCOPED_RENDER_EVENT2("vtkOpenGLSurfaceSplatRasterizer setup", timer, setupEvent);
   const bool translucent = internal.Translucent;
   vtkShaderProgram* program = internal.ReadySplatProgram(window, camera, settings,
     this->ApproximateFilter, settings->GetBackfaceCulling() && !translucent, false);
+  setupEvent.Stop();
   if (!program)
   {
     vtkErrorMacro("The splatting shaders did not compile.");
@@ -465,6 +470,8 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     {
       previous->Activate();
       program->SetUniformi("previousDepth", previous->GetTextureUnit());
+      internal.LayerColor->Activate();
+      program->SetUniformi("layersInFront", internal.LayerColor->GetTextureUnit());
     }
     program->SetUniformi("peel", layer > 0);
 
@@ -476,18 +483,21 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     state->vtkglClear(GL_DEPTH_BUFFER_BIT);
     program->SetUniformi("splatPass", VisibilityPass);
+    VTK_SCOPED_RENDER_EVENT2("visibility, layer " << layer, timer, visibilityEvent);
     glBeginQuery(GL_ANY_SAMPLES_PASSED, internal.Query);
     internal.Draw();
     glEndQuery(GL_ANY_SAMPLES_PASSED);
     GLuint anySamples = 0;
     glGetQueryObjectuiv(internal.Query, GL_QUERY_RESULT, &anySamples);
+    visibilityEvent.Stop();
     if (!anySamples)
     {
       if (layer > 0)
       {
         previous->Deactivate();
+        internal.LayerColor->Deactivate();
       }
-      break; // nothing lies behind the layers peeled so far
+      break; // nothing shows behind the layers peeled so far
     }
 
     // Pass 2: attributes, added up within the visibility depth.
@@ -498,16 +508,21 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     state->vtkglEnable(GL_BLEND);
     state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
     program->SetUniformi("splatPass", AttributePass);
+    VTK_SCOPED_RENDER_EVENT2("attributes, layer " << layer, timer, attributeEvent);
     internal.Draw();
+    attributeEvent.Stop();
     internal.StripArray.Array->Release();
     if (layer > 0)
     {
       previous->Deactivate();
+      internal.LayerColor->Deactivate();
     }
 
     // Pass 3: normalize, shade, and blend under the layers in front (the first one also
     // writes its depth).
+    VTK_SCOPED_RENDER_EVENT2("resolve, layer " << layer, timer, resolveEvent);
     internal.ResolveLayer(window, camera, lights, material, settings, layer);
+    resolveEvent.Stop();
     this->PeeledLayers = layer + 1;
   }
   if (sceneTest)

@@ -24,7 +24,10 @@
  * - pass 3, normalization and deferred shading with VTK's lights, into a layer image;
  * - layers: translucent splats and antialiased edges (which show what lies behind them) peel up
  *   to NumberOfLayers surfaces front to back, each splatted with passes 1-2, shaded, and blended
- *   under the ones in front; peeling stops at the first layer that no fragment reaches;
+ *   under the ones in front; a peeled layer's fragments end at once where the layers in front
+ *   cover the pixel fully (most of an opaque surface with antialiased edges: on a GPU whose
+ *   fragment work is the cost, each further layer then costs a fraction of the first);
+ *   peeling stops at the first layer that no fragment reaches;
  * - the result (premultiplied color and the window depth of the front surface) is then drawn
  *   into VTK's framebuffer by vtkOpenGLImageDepthCompositor, like the CPU backend's image.
  * Positions are uploaded relative to the center of the input's bounds, with that shift folded

@@ -26,7 +26,8 @@
 # (TestSurfaceSplatBackends, TestVolumeSplatBackends, TestVolumeSplatSphericalHarmonics), the
 # bench's OpenGL surface rows (sphere 1 M and 5 M, the bunny, at 1024^2, vtkPointGaussianMapper
 # in the same run) and volume rows (the MRI, gaussians, 3dgs, vdb at 1024^2, the ray casters in
-# the same run). Files in $OUT: summary.txt, checks.log, bench-surface.csv, bench-volume.csv,
+# the same run), and the GPU time of each render pass of a later frame of the sphere, the MRI, the
+# capture and the fog (splat_bench --gpu-timings, into checks.log). Files in $OUT: summary.txt, checks.log, bench-surface.csv, bench-volume.csv,
 # gpu-memory.csv (nvidia-smi's used memory every second) and images.tar (the tests' images, and
 # the bench's last frames where they fit). --quick: the bench's smoke sizes. It exits non-zero
 # when a check failed.
@@ -267,6 +268,14 @@ cmd_run() {
   check bench-volume 300 "$R/bin/splat_bench" "${volume[@]}" --output "$R/bench/bench-volume.csv" \
     --image-dir "$R/images/bench"
   cp "$R"/bench/*.csv "$out/" 2>/dev/null || true
+  # The GPU time of each pass of a later frame (the render timer log), into checks.log.
+  local timings=(--scenes "sphere,mri,3dgs,vdb" --points 1000000 --sizes 1024 --backends opengl
+    --mappers splat --orderings "blended,depth-sorted" --frames 3 --budget 2)
+  [ "$quick" = 1 ] && timings=(--scenes sphere --quick --points 5000 --backends opengl
+    --mappers splat)
+  mkdir -p "$R/timings"
+  check timings 120 "$R/bin/splat_bench" "${timings[@]}" --gpu-timings \
+    --output "$R/timings/bench.csv"
 
   cat "$out/xvfb.log" >>"$log"
   rm -f "$out/xvfb.log"

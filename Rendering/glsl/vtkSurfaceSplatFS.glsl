@@ -40,9 +40,11 @@ uniform float nearDepth;
 uniform float farDepth;
 uniform vec2 depthProjection; // eye z to NDC z: (P22 z + P32) / (P23 z + P33), as (P22, P32)
 uniform vec2 depthProjectionW; // (P23, P33)
-// Peeling: fragments at or in front of the previous layer's visibility depth were drawn there.
+// Peeling: fragments at or in front of the previous layer's visibility depth were drawn there,
+// and pixels that the layers in front cover fully (alpha 1) show nothing behind them.
 uniform int peel;
 uniform sampler2D previousDepth;
+uniform sampler2D layersInFront;
 // Translucent splats: fragments behind the opaque scene already drawn are hidden.
 uniform int sceneTest;
 uniform sampler2D sceneDepth;
@@ -94,6 +96,11 @@ float differentialNormalScale(vec2 curvature, vec2 uv)
 void main()
 {
   vec2 fragment = gl_FragCoord.xy - viewportOrigin;
+  // First, before any other work: on a GPU, most of a peeled layer's fragments end here.
+  if (peel != 0 && texelFetch(layersInFront, ivec2(fragment), 0).a >= 1.0)
+  {
+    discard;
+  }
   vec3 pixel = vec3(fragment, 1.0);
   vec3 origin = rayOrigin * pixel;
   vec3 direction = rayDirection * pixel;
