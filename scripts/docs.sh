@@ -149,10 +149,7 @@ were trained under: [report/captures.md](report/captures.md); the extreme and st
 | scene | mapper | backend | setting | points | ms per frame | first frame ms | peer ratio | bytes per splat |
 |---|---|---|---|---:|---:|---:|---:|---:|
 EOF
-    awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
-      { printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $c["scene"], $c["mapper"],
-        $c["backend"], $c["setting"], $c["points"], $c["ms_per_frame"], $c["first_frame_ms"],
-        $c["peer_ratio"], $c["bytes_per_splat"] }' "$WORK/bench.csv"
+    awk -F, -f "$ROOT/scripts/bench-table.awk" "$WORK/bench.csv"
     printf '\n'
     stamp
   } > "$DOCS/performance.md"
