@@ -69,10 +69,6 @@ constexpr std::size_t RecordBytes = Floats(RecordFields) * sizeof(float);
 // The setup pass draws with the rasterizer off, but a program needs a fragment shader.
 constexpr const char* SetupFS = "//VTK::System::Dec\nvoid main()\n{\n}\n";
 constexpr int ApproximateFilterMode = 3;
-// The widest point sprite drawn: wider splats are few and costly in fragments, where quads
-// cost no more; and Debian 13's Mesa (llvmpipe) draws points of a few hundred pixels wrong,
-// where it reports them in range.
-constexpr GLfloat LargestPointSprite = 64.0f;
 // The splatting shader's passes (vtkSurfaceSplatFS.glsl).
 enum SplatPass
 {
@@ -205,9 +201,8 @@ struct vtkOpenGLSurfaceSplatRasterizer::Internals
     vtkSurfaceSplatRasterizer* settings, int layer);
   // Binds the strip program's attributes, a record per instance or, for points, per vertex.
   void BindStripArray(vtkShaderProgram* program, bool withPointIds, bool points);
-  // True when every splat's box fits the largest point sprite (LargestPointSprite, or less
-  // where this OpenGL draws no larger points; the strip program current), by an occlusion
-  // query of the fit check.
+  // True when every splat's box fits the largest point this OpenGL draws (the strip program
+  // current), by an occlusion query of the fit check.
   bool SplatsFitPoints(vtkOpenGLRenderWindow* window, vtkShaderProgram* program);
   void Draw()
   {
@@ -293,7 +288,7 @@ bool vtkOpenGLSurfaceSplatRasterizer::Internals::SplatsFitPoints(
     return false;
   }
   this->BindStripArray(program, false, true);
-  program->SetUniformf("largestPointSize", std::min(pointSizes[1], LargestPointSprite));
+  program->SetUniformf("largestPointSize", pointSizes[1]);
   program->SetUniformi("pointMode", FitCheck);
   program->SetUniformi("splatPass", FitCheckPass);
   vtkOpenGLState* state = window->GetState();

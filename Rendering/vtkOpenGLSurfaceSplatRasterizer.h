@@ -11,8 +11,8 @@
  *   splat into a buffer; nothing is computed per splat on the CPU, and the surfels are uploaded
  *   once per input change;
  * - every surfel is one point sprite covering the part of the tight bounding box of its
- *   kernel's cutoff ellipse inside the viewport when every splat's box fits a point of at most
- *   64 pixels (an occlusion query of the splats that do not, each frame), else one
+ *   kernel's cutoff ellipse inside the viewport when every splat's box fits the largest point
+ *   this OpenGL draws (an occlusion query of the splats that do not, each frame), else one
  *   instance of a four-vertex triangle strip covering the whole box: the vertex shader reads
  *   the box and the rest of the kernel from the splat's record (a culled splat draws nothing),
  *   so that all the passes below share one setup. The fragments are the same either way; the

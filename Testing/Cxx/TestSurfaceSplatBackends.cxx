@@ -2,8 +2,8 @@
 // The OpenGL backend renders what the CPU backend renders: the same scenes (a lit, scalar-colored
 // sphere; the bunny scan where ../shared/data has it; the grazing checkerboard plane of
 // splat_report; translucent planes over an opaque one; a sphere of 20 surfels seen close, whose
-// splats are too wide for the OpenGL backend's point sprites, so that its quads are compared
-// too) through both backends at the same camera
+// splats are too wide for point sprites where the largest point is 255 pixels, as under Mesa,
+// so that the OpenGL backend's quads are compared too) through both backends at the same camera
 // must agree within an RMSE bound per scene (on RGB in [0,1]), and the
 // OpenGL backend's other filters (approximate, circular) must not, so that each bound tells the
 // filters apart. AUTO must pick the CPU under a software OpenGL renderer (llvmpipe here) and
@@ -82,9 +82,9 @@ Scene Sphere(vtkRenderer* renderer)
   return { "sphere", { mapper }, 0.0 };
 }
 
-// A sphere of few surfels seen close: splats wider than the largest point sprite the OpenGL
-// backend draws (64 pixels), which it then draws as quads, where the other scenes' splats are
-// point sprites.
+// A sphere of few surfels seen close: splats wider than the largest point of a software OpenGL
+// (255 pixels), which the OpenGL backend then draws as quads, where the other scenes' splats
+// are point sprites.
 Scene MagnifiedSphere(vtkRenderer* renderer)
 {
   vtkSurfaceSplatMapper* mapper = AddSplats(renderer, splattest::SurfelSphere(20, 1.0));
