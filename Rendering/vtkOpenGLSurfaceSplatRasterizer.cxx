@@ -74,15 +74,7 @@ enum SplatPass
 {
   VisibilityPass = 0,
   AttributePass = 1,
-  SelectionPass = 2,
-  FitCheckPass = 3
-};
-// How the strip shader draws each splat (vtkSurfaceSplatVS.glsl).
-enum PointMode
-{
-  Quads = 0,
-  PointSprites = 1,
-  FitCheck = 2
+  SelectionPass = 2
 };
 
 using splat::SetNearest;
@@ -129,21 +121,18 @@ struct ProgramArray
   vtkNew<vtkOpenGLVertexArrayObject> Array;
   vtkShaderProgram* Program = nullptr; // the program its attributes are bound to
   bool PointIds = false;               // whether they include the point ids
-  int Divisor = 0;                     // of the attributes: 1 per instance, 0 per vertex
 
-  // Binds the array; true when it was emptied for `program` (current), the point ids or the
-  // divisor, and needs its attributes added.
-  bool Bind(vtkShaderProgram* program, bool pointIds, int divisor = 0)
+  // Binds the array; true when it was emptied for `program` (current) or the point ids, and
+  // needs its attributes added.
+  bool Bind(vtkShaderProgram* program, bool pointIds)
   {
-    const bool changed =
-      program != this->Program || pointIds != this->PointIds || divisor != this->Divisor;
+    const bool changed = program != this->Program || pointIds != this->PointIds;
     if (changed)
     {
       // (This releases the array: bind it after.)
       this->Array->ShaderProgramChanged();
       this->Program = program;
       this->PointIds = pointIds;
-      this->Divisor = divisor;
     }
     this->Array->Bind();
     return changed;
@@ -163,8 +152,7 @@ struct vtkOpenGLSurfaceSplatRasterizer::Internals
   vtkNew<vtkOpenGLBufferObject> Records; // the setup pass's output, the strip passes' input
   vtkNew<vtkOpenGLBufferObject> PointIds;
   ProgramArray SetupArray; // the surfels, a vertex each
-  ProgramArray StripArray; // the records (and point ids), an instance or a point each
-  bool PointSprites = false; // this frame's splats are points (vtkSurfaceSplatVS.glsl)
+  ProgramArray StripArray; // the records (and point ids), an instance each
   GLsizei RecordCapacity = 0;
   vtkMTimeType Version = 0;
   vtkMTimeType PointIdsVersion = 0;
@@ -199,22 +187,7 @@ struct vtkOpenGLSurfaceSplatRasterizer::Internals
   void ResolveLayer(vtkOpenGLRenderWindow* window, const vtkSurfaceSplatRasterizer::Camera& camera,
     const std::vector<splat::Light>& lights, const splat::Material& material,
     vtkSurfaceSplatRasterizer* settings, int layer);
-  // Binds the strip program's attributes, a record per instance or, for points, per vertex.
-  void BindStripArray(vtkShaderProgram* program, bool withPointIds, bool points);
-  // True when every splat's box fits the largest point this OpenGL draws (the strip program
-  // current), by an occlusion query of the fit check.
-  bool SplatsFitPoints(vtkOpenGLRenderWindow* window, vtkShaderProgram* program);
-  void Draw()
-  {
-    if (this->PointSprites)
-    {
-      glDrawArrays(GL_POINTS, 0, this->Count);
-    }
-    else
-    {
-      glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, this->Count);
-    }
-  }
+  void Draw() { glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, this->Count); }
 };
 
 //------------------------------------------------------------------------------
@@ -248,66 +221,23 @@ vtkShaderProgram* vtkOpenGLSurfaceSplatRasterizer::Internals::ReadySplatProgram(
   }
   this->SetupArray.Array->Release();
 
-  // The strips, reading the records; points where every splat fits one (not for selection).
+  // The strips, reading the records.
   vtkShaderProgram* program = cache->ReadyShaderProgram(vtkSurfaceSplatVS, vtkSurfaceSplatFS, "");
   if (!program || !program->GetCompiled())
   {
     return nullptr;
   }
-  this->SetSplatUniforms(program, camera, settings, approximateFilter, cullBackFaces);
-  this->PointSprites = !withPointIds && this->SplatsFitPoints(window, program);
-  this->BindStripArray(program, withPointIds, this->PointSprites);
-  program->SetUniformi("pointMode", this->PointSprites ? PointSprites : Quads);
-  return program;
-}
-
-//------------------------------------------------------------------------------
-void vtkOpenGLSurfaceSplatRasterizer::Internals::BindStripArray(
-  vtkShaderProgram* program, bool withPointIds, bool points)
-{
-  const int divisor = points ? 0 : 1;
-  if (this->StripArray.Bind(program, withPointIds, divisor))
+  if (this->StripArray.Bind(program, withPointIds))
   {
-    AddAttributes(this->StripArray.Array, program, this->Records, RecordFields, divisor);
+    AddAttributes(this->StripArray.Array, program, this->Records, RecordFields, 1);
     if (withPointIds)
     {
-      this->StripArray.Array->AddAttributeArrayWithDivisor(program, this->PointIds, "pointId", 0,
-        2 * sizeof(float), VTK_FLOAT, 2, false, divisor, false);
+      this->StripArray.Array->AddAttributeArrayWithDivisor(
+        program, this->PointIds, "pointId", 0, 2 * sizeof(float), VTK_FLOAT, 2, false, 1, false);
     }
   }
-}
-
-//------------------------------------------------------------------------------
-bool vtkOpenGLSurfaceSplatRasterizer::Internals::SplatsFitPoints(
-  vtkOpenGLRenderWindow* window, vtkShaderProgram* program)
-{
-  GLfloat pointSizes[2] = { 0.0f, 0.0f };
-  glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
-  if (this->Count == 0 || !(pointSizes[1] >= 1.0f))
-  {
-    return false;
-  }
-  this->BindStripArray(program, false, true);
-  program->SetUniformf("largestPointSize", pointSizes[1]);
-  program->SetUniformi("pointMode", FitCheck);
-  program->SetUniformi("splatPass", FitCheckPass);
-  vtkOpenGLState* state = window->GetState();
-  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglColorMask colorMask(state);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  this->SplatFramebuffer->Bind();
-  if (!this->Query)
-  {
-    glGenQueries(1, &this->Query);
-  }
-  glBeginQuery(GL_ANY_SAMPLES_PASSED, this->Query);
-  glDrawArrays(GL_POINTS, 0, this->Count);
-  glEndQuery(GL_ANY_SAMPLES_PASSED);
-  GLuint oversized = 0;
-  glGetQueryObjectuiv(this->Query, GL_QUERY_RESULT, &oversized);
-  this->StripArray.Array->Release();
-  return oversized == 0;
+  this->SetSplatUniforms(program, camera, settings, approximateFilter, cullBackFaces);
+  return program;
 }
 
 //------------------------------------------------------------------------------
@@ -510,9 +440,6 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     return;
   }
   program->SetUniform2f("viewportOrigin", std::array<float, 2>{ 0.0f, 0.0f }.data());
-  // Point sprites take their size from the shader (VTK's state does not track this switch).
-  const GLboolean programPointSize = glIsEnabled(GL_PROGRAM_POINT_SIZE);
-  glEnable(GL_PROGRAM_POINT_SIZE);
   const bool sceneTest =
     translucent && sceneDepths.size() == static_cast<std::size_t>(width) * height;
   program->SetUniformi("sceneTest", sceneTest);
@@ -597,10 +524,6 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     internal.ResolveLayer(window, camera, lights, material, settings, layer);
     resolveEvent.Stop();
     this->PeeledLayers = layer + 1;
-  }
-  if (!programPointSize)
-  {
-    glDisable(GL_PROGRAM_POINT_SIZE);
   }
   if (sceneTest)
   {

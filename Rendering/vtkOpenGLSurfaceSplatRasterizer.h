@@ -10,14 +10,10 @@
  *   point per surfel drawn with the rasterizer off, and transform feedback writes a record per
  *   splat into a buffer; nothing is computed per splat on the CPU, and the surfels are uploaded
  *   once per input change;
- * - every surfel is one point sprite covering the part of the tight bounding box of its
- *   kernel's cutoff ellipse inside the viewport when every splat's box fits the largest point
- *   this OpenGL draws (an occlusion query of the splats that do not, each frame), else one
- *   instance of a four-vertex triangle strip covering the whole box: the vertex shader reads
- *   the box and the rest of the kernel from the splat's record (a culled splat draws nothing),
- *   so that all the passes below share one setup. The fragments are the same either way; the
- *   points take a quarter of the vertex work, which bounds these passes on the NVIDIA H200 (1 M
- *   splats at 1024^2: 149 ms per frame as quads, 86 ms as points, the same at 256^2);
+ * - every surfel is one instance of a four-vertex triangle strip covering the tight bounding box
+ *   of its kernel's cutoff ellipse: the strip's vertex shader reads the box and the rest of the
+ *   kernel from the splat's record (a culled splat's strip draws nothing), so that all the
+ *   passes below share one setup;
  * - pass 1, visibility: each fragment intersects its pixel's view ray with the splat's tangent
  *   plane, drops what lies outside the cutoff, and writes the linear eye depth of the
  *   intersection plus the splat's depth threshold (DepthThreshold times its radius);

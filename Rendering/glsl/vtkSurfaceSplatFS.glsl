@@ -11,8 +11,7 @@
 //   pass 1, attributes: weight-times-color, weight, weight-times-normal, weight-times-opacity
 //           and weight-times-depth, added up over the splats within the threshold of pass 0;
 //   pass 2, selection: the hardware selector's color, at the window depth of the intersection
-//           pulled forward by a share of the threshold that shrinks with the kernel's exponent;
-//   pass 3, the fit check of vtkSurfaceSplatVS.glsl: the fragment passes, nothing written.
+//           pulled forward by a share of the threshold that shrinks with the kernel's exponent.
 
 flat in vec2 splatCenter;
 flat in vec3 splatConic;
@@ -96,10 +95,6 @@ float differentialNormalScale(vec2 curvature, vec2 uv)
 
 void main()
 {
-  if (splatPass == 3)
-  {
-    return;
-  }
   vec2 fragment = gl_FragCoord.xy - viewportOrigin;
   // First, before any other work: on a GPU, most of a peeled layer's fragments end here.
   if (peel != 0 && texelFetch(layersInFront, ivec2(fragment), 0).a >= 1.0)

@@ -4,11 +4,6 @@
 // covering the pixel box of the record that vtkSurfaceSplatSetupVS.glsl wrote for the splat
 // this frame (the tight bounding box of its resampling kernel's cutoff ellipse, or of a
 // differential point's rectangle); the record goes on to the fragment shader unchanged.
-// Or, when every splat's box fits the largest point, one point sprite per surfel (a vertex
-// each: a quarter of the vertex work, which bounds these passes on some GPUs) covering the part
-// of the box inside the viewport, so that no point is clipped by its center; the fragment
-// shader's work is the same. The fit check draws, as a point at pixel (0, 0), the splats that
-// do not fit.
 
 // The splat's record (instanced; vtkSurfaceSplatSetupVS.glsl says what each holds).
 in vec4 recordBox;
@@ -22,8 +17,6 @@ in vec4 recordColor;
 in vec2 pointId; // the input point's id in two 24-bit halves; selection passes only
 
 uniform vec2 viewportSize;
-uniform int pointMode; // 0: quads, 1: point sprites, 2: the fit check
-uniform float largestPointSize;
 
 flat out vec2 splatCenter;
 flat out vec3 splatConic; // 1/2 M^-1 as (xx, 2 xy, yy): beta = dx^2 xx + dx dy xy + dy^2 yy
@@ -62,19 +55,6 @@ void main()
   splatColor = recordColor;
   splatPointId = pointId;
 
-  if (pointMode != 0)
-  {
-    vec2 pointLo = max(lo, vec2(0.0));
-    vec2 pointHi = min(hi, viewportSize);
-    vec2 size = pointHi - pointLo + 1.0;
-    float side = max(size.x, size.y);
-    bool fits = side <= largestPointSize;
-    gl_PointSize = pointMode == 1 ? side : 1.0;
-    vec2 pixel = pointMode == 1 ? 0.5 * (pointLo + pointHi) : vec2(0.5);
-    gl_Position = pointMode == 1 || !fits ? vec4(pixel / viewportSize * 2.0 - 1.0, 0.0, 1.0)
-                                          : vec4(2.0, 2.0, 2.0, 1.0);
-    return;
-  }
   // The corner of this vertex, with half a pixel of margin around the box.
   vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
   vec2 pixel = 0.5 * (lo + hi) + corner * (0.5 * (hi - lo) + 0.5);
