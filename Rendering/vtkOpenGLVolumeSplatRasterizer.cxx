@@ -344,8 +344,8 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
   const int mode = settings->GetOrderingMode();
   const glm::dvec2 viewport(width, height);
 
-  // GPU times of the steps, for vtkRenderWindow::GetRenderTimer() (when its logging is on); the
-  // first includes the CPU's depth sort, which the GPU waits for.
+  // GPU times of the steps, for vtkRenderWindow::GetRenderTimer() (when its logging is on).
+  // Timer queries bracket GPU work only: the CPU's depth sort is not in "orders".
   vtkRenderTimerLog* timer = window->GetRenderTimer();
   VTK_SCOPED_RENDER_EVENT2("vtkOpenGLVolumeSplatRasterizer orders", timer, orderEvent);
 
