@@ -100,7 +100,7 @@ vtkGPUVolumeRayCastMapper draws that grid nearly transparent). For volumes the c
 rendered = kernels projected (a kernel counts once per list that splats it), frustum_culled,
 backface_culled empty, negligible = kernels of zero opacity (not in the lists), skipped =
 invalid kernels plus those reaching the near plane. Volume cases time
-at most 3 frames, the volume marked modified before each. 3dgs is a generated 3D Gaussian
+at most 3 frames (unless --frames), the volume marked modified before each. 3dgs is a generated 3D Gaussian
 Splatting capture of --kernels Gaussians flattened onto a torus (SplatCaptureScene.h: "Scale",
 "Rotation", peak "Opacity" and spherical harmonics of degree 3, evaluated for the camera every
 frame); it has no peer (VTK draws no view-dependent Gaussians), so its peer_ratio is empty.
@@ -145,7 +145,7 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
                        for 3dgs depth-sorted-antialiased and depth-sorted-low-pass (the
                        other footprint filters; every other row of a capture has the
                        dilation it was trained with) (default all)
-  --frames N           at most N timed frames per case (default 10)
+  --frames N           at most N timed frames per case (default 10, 3 for volumes)
   --budget SECONDS     time a case's frames within this many seconds: after the first timed
                        frame, another is timed only while the elapsed time plus the last
                        frame's stays within the budget (default 10)

@@ -53,7 +53,7 @@ struct Options
   std::vector<std::string> VolumeBackends = { "cpu" }; // --backends sets both
   std::vector<std::string> Orderings = { "blended", "clipped", "single-axis", "depth-sorted",
     "blended-exact", "depth-sorted-antialiased", "depth-sorted-low-pass" };
-  int Frames = 10;
+  int Frames = 0; // --frames: at most this many timed frames per case (0: the scene's)
   double Budget = 10.0;
   std::string Output = "output/bench/bench.csv";
   std::string ImageDir;
@@ -92,7 +92,7 @@ struct Scene
   std::vector<MapperKind> Kinds;
   std::function<Stage(const MapperKind&)> Make;
   std::function<void(vtkRenderer*, const Stage&)> Place;
-  int Frames = 0; // at most this many timed frames per case (0: --frames)
+  int Frames = 10; // at most this many timed frames per case, unless --frames says
 };
 
 // A memory field of /proc/self/status in bytes: "VmRSS" (resident now) or "VmHWM" (the peak
@@ -240,7 +240,7 @@ inline CaseResult MeasureCase(vtkRenderWindow* window, const MapperKind& kind, c
   scene.Place(renderer, stage);
 
   result.Milliseconds = MillisecondsPerFrame(window, options,
-    scene.Frames > 0 ? std::min(scene.Frames, options.Frames) : options.Frames,
+    options.Frames > 0 ? options.Frames : scene.Frames,
     vtkVolume::SafeDownCast(stage.Prop), result.Frames, result.FirstMilliseconds);
   result.PeakResident = ProcessStatusBytes("VmHWM");
   if (baselineBytes >= 0 && result.PeakResident >= 0)

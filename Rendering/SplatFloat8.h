@@ -38,6 +38,15 @@
 #define SPLAT_INLINE_LAMBDA
 #endif
 
+// For a per-kernel loop over the math of the VTK-free headers (footprints, spherical
+// harmonics): the clones with that math inlined, so that the AVX2 one has its rounding as
+// instructions rather than calls and its products fused.
+#if defined(__GNUC__)
+#define SPLAT_VECTOR_CLONES_INLINED SPLAT_VECTOR_CLONES __attribute__((flatten))
+#else
+#define SPLAT_VECTOR_CLONES_INLINED SPLAT_VECTOR_CLONES
+#endif
+
 namespace splat
 {
 #if defined(__GNUC__)
