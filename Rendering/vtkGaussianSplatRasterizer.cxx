@@ -61,7 +61,7 @@ void SortByDepth(std::uint64_t* entries, std::size_t count, std::uint64_t* scrat
   constexpr std::uint64_t DigitMask = (1u << DigitBits) - 1;
   std::uint64_t* from = entries;
   std::uint64_t* to = scratch;
-  for (int shift = 32; shift < 64 && count > 1; shift += DigitBits)
+  for (int shift = 32; shift < 64; shift += DigitBits)
   {
     std::uint32_t places[DigitMask + 1] = {};
     for (std::size_t i = 0; i < count; ++i)
