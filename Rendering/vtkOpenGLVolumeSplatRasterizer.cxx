@@ -180,7 +180,12 @@ struct vtkOpenGLVolumeSplatRasterizer::Internals
   int Height = 0;
 
   void Allocate(vtkOpenGLRenderWindow* window, int width, int height);
-  void UploadOrder(vtkOpenGLRenderWindow* window, int list, const std::vector<vtkIdType>& order);
+  /// A list's kernel indices into its texture buffer.
+  void UploadOrder(vtkOpenGLRenderWindow* window, int list, const std::vector<vtkIdType>& order)
+  {
+    this->UploadIndices(window, list, std::vector<std::int32_t>(order.begin(), order.end()));
+  }
+  void UploadIndices(vtkOpenGLRenderWindow* window, int list, std::vector<std::int32_t> indices);
   /// Draws into `target` with the bound framebuffer, after clearing it.
   void Target(vtkOpenGLState* state, vtkTextureObject* target);
 };
@@ -208,12 +213,14 @@ void vtkOpenGLVolumeSplatRasterizer::Internals::Allocate(
 }
 
 //------------------------------------------------------------------------------
-void vtkOpenGLVolumeSplatRasterizer::Internals::UploadOrder(
-  vtkOpenGLRenderWindow* window, int list, const std::vector<vtkIdType>& order)
+void vtkOpenGLVolumeSplatRasterizer::Internals::UploadIndices(
+  vtkOpenGLRenderWindow* window, int list, std::vector<std::int32_t> indices)
 {
   // At least one entry: an empty buffer cannot back a texture.
-  std::vector<std::int32_t> indices(std::max<std::size_t>(order.size(), 1), 0);
-  std::copy(order.begin(), order.end(), indices.begin());
+  if (indices.empty())
+  {
+    indices.push_back(0);
+  }
   this->OrderBuffers[list]->Upload(indices, vtkOpenGLBufferObject::TextureBuffer);
   vtkTextureObject* texture = this->OrderTextures[list];
   texture->SetContext(window);
@@ -379,17 +386,19 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
         }
       });
     vtkSMPTools::Sort(keys.begin(), keys.end());
-    std::vector<vtkIdType> order(n);
+    // The texture buffer's indices straight from the keys (not through a vtkIdType order and
+    // a serial copy).
+    std::vector<std::int32_t> order(n);
     vtkSMPTools::For(0, n,
       [&](vtkIdType begin, vtkIdType end)
       {
         for (vtkIdType i = begin; i < end; ++i)
         {
-          order[i] = static_cast<vtkIdType>(keys[i] & 0xffffffffu);
+          order[i] = static_cast<std::int32_t>(keys[i] & 0xffffffffu);
         }
       });
     ++this->SortCount;
-    internal.UploadOrder(window, DepthList, order);
+    internal.UploadIndices(window, DepthList, std::move(order));
   }
   else
   {
