@@ -38,9 +38,9 @@
 #define SPLAT_INLINE_LAMBDA
 #endif
 
-// For a per-kernel loop over the math of the VTK-free headers (footprints, spherical
-// harmonics): the clones with that math inlined, so that the AVX2 one has its rounding as
-// instructions rather than calls and its products fused.
+// For a per-kernel loop over the math of the VTK-free headers (the capture footprints): the
+// clones with that math inlined, so that the AVX2 one has its rounding as instructions rather
+// than calls and its products fused.
 #if defined(__GNUC__)
 #define SPLAT_VECTOR_CLONES_INLINED SPLAT_VECTOR_CLONES __attribute__((flatten))
 #else
