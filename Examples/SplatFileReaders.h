@@ -32,12 +32,15 @@
 #include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <unistd.h> // mkdtemp
 
 namespace splatexample
 {
@@ -202,6 +205,38 @@ inline vtkSmartPointer<vtkPolyData> ReadOFF(const std::string& path)
   mesh->SetPoints(points);
   mesh->SetPolys(polys);
   return mesh;
+}
+
+// Debian's libcgal-demo ships its sample data as one tarball: only the armadillo is unpacked,
+// into a temporary folder removed after reading.
+inline const char* const CgalData = "/usr/share/doc/libcgal-dev/data.tar.gz";
+
+inline vtkSmartPointer<vtkPolyData> ReadCgalArmadillo()
+{
+  const std::string member = "data/meshes/armadillo.off";
+  std::string folder;
+  if (!vtksys::SystemTools::GetEnv("TMPDIR", folder) || folder.empty())
+  {
+    folder = "/tmp";
+  }
+  std::string pattern = folder + "/splat_cgal.XXXXXX";
+  if (!mkdtemp(pattern.data()))
+  {
+    throw std::runtime_error("cannot create a temporary folder in " + folder);
+  }
+  struct RemoveOnExit
+  {
+    std::string Path;
+    ~RemoveOnExit() { vtksys::SystemTools::RemoveADirectory(this->Path); }
+  } temporary{ pattern };
+
+  const std::string command =
+    "tar -xzf '" + std::string(CgalData) + "' -C '" + temporary.Path + "' " + member;
+  if (std::system(command.c_str()) != 0)
+  {
+    throw std::runtime_error("'" + command + "' failed");
+  }
+  return ReadOFF(temporary.Path + "/" + member);
 }
 
 inline void RequireFile(const std::string& path)

@@ -46,7 +46,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h> // mkdtemp
 
 namespace
 {
@@ -212,38 +211,6 @@ void RenderScene(vtkRenderWindow* window, vtkSurfaceSplatMapper* mapper, const O
   splatexample::WritePNG(window, png);
   std::cout << "  image:         " << png << " (" << options.Width << "x" << options.Height << ")"
             << std::endl;
-}
-
-// Debian's libcgal-demo ships its sample data as one tarball: only the armadillo is unpacked,
-// into a temporary folder removed after reading.
-const char* const CgalData = "/usr/share/doc/libcgal-dev/data.tar.gz";
-
-vtkSmartPointer<vtkPolyData> ReadCgalArmadillo()
-{
-  const std::string member = "data/meshes/armadillo.off";
-  std::string folder;
-  if (!vtksys::SystemTools::GetEnv("TMPDIR", folder) || folder.empty())
-  {
-    folder = "/tmp";
-  }
-  std::string pattern = folder + "/splat_render.XXXXXX";
-  if (!mkdtemp(pattern.data()))
-  {
-    throw std::runtime_error("cannot create a temporary folder in " + folder);
-  }
-  struct RemoveOnExit
-  {
-    std::string Path;
-    ~RemoveOnExit() { vtksys::SystemTools::RemoveADirectory(this->Path); }
-  } temporary{ pattern };
-
-  const std::string command =
-    "tar -xzf '" + std::string(CgalData) + "' -C '" + temporary.Path + "' " + member;
-  if (std::system(command.c_str()) != 0)
-  {
-    throw std::runtime_error("'" + command + "' failed");
-  }
-  return splatexample::ReadOFF(temporary.Path + "/" + member);
 }
 
 // A unit sphere of points with radial normals, colored by a smooth scalar field through a
@@ -495,17 +462,17 @@ int RenderDemoScenes(const Options& given)
     RenderScene(window, SplatMapper(ReadPolyData(bunny), options), options, folder + "/bunny.png");
     ++images;
   }
-  else if (vtksys::SystemTools::FileExists(CgalData, true))
+  else if (vtksys::SystemTools::FileExists(splatexample::CgalData, true))
   {
-    std::cout << "armadillo: " << bunny << " is absent; using armadillo.off from " << CgalData
+    std::cout << "armadillo: " << bunny << " is absent; using armadillo.off from " << splatexample::CgalData
               << std::endl;
     RenderScene(
-      window, SplatMapper(ReadCgalArmadillo(), options), options, folder + "/armadillo.png", 180.0);
+      window, SplatMapper(splatexample::ReadCgalArmadillo(), options), options, folder + "/armadillo.png", 180.0);
     ++images;
   }
   else
   {
-    std::cout << "mesh scene skipped: neither " << bunny << " nor " << CgalData
+    std::cout << "mesh scene skipped: neither " << bunny << " nor " << splatexample::CgalData
               << " (Debian package libcgal-demo) is present\n";
   }
   std::cout << "sphere: " << SpherePoints << " points colored by the scalar 'Wave'" << std::endl;

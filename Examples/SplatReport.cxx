@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// splat_report: the error-against-run-time report. Renders two scenes with every quality setting
+// splat_report: the error-against-run-time report. Renders each scene with every quality setting
 // of vtkSurfaceSplatMapper and with the peer vtkPointGaussianMapper, times each (median ms per
 // frame), measures each image's error against a reference (RMSE and PSNR, OpenImageIO), and
 // writes a CSV, a Markdown table, a plot (VTK charts) and every image as PNG.
@@ -13,8 +13,10 @@
 //   truncated at 3 sigma). The splats are a regular grid of surfels colored with the
 //   checkerboard's exact average over their grid cells (a box prefilter). The scene and its
 //   reference are in SplatCheckerboardScene.h and SplatCheckerboardReference.h, shared with TestSurfaceSplatCheckerboardError.
-// - bunny: the Stanford bunny mesh; the reference is the mesh drawn by vtkPolyDataMapper at 4x4
-//   supersampling (4x the size, 4x4 blocks averaged); the splats come from vtkSurfelGenerator.
+// - bunny, bunny-closeup, armadillo, armadillo-closeup, sphere: meshes (two scans, each seen whole
+//   and magnified, and a sphere of --points vertices seen whole; SplatReportMeshes.h); the
+//   reference is the mesh drawn by vtkPolyDataMapper at 4x4 supersampling (4x the size, 4x4
+//   blocks averaged); the splats come from vtkSurfelGenerator.
 // - mri, gaussians, vdb: volumes (SplatVolumeScenes.h, SplatVdbScenes.h) drawn by
 //   vtkVolumeSplatMapper in every ordering
 //   mode and with other cutoffs, and by VTK's ray casters; the reference integrates the same
@@ -27,6 +29,7 @@
 #include "SplatReportCaptures.h"
 #include "SplatReportCases.h"
 #include "SplatReportImages.h"
+#include "SplatReportMeshes.h"
 #include "SplatReportDifferentialPoints.h"
 #include "SplatReportOutput.h"
 #include "SplatReportStability.h"
@@ -105,9 +108,14 @@ variance), offscreen, and measures each image against a reference:
   textured-plane  the checkerboard as a texture acquired onto jittered surfels (at most 250 000)
                 by vtkSurfelTextureAcquisition's three modes, checks 4 and 0.6 spacings wide;
                 the analytic reference; acquisition time per surfel (SplatReportTexture.h)
-  bunny         the Stanford bunny; reference: the mesh (vtkPolyDataMapper) at 4x4 supersampling;
-                then differential points against surfels on it (SplatReportDifferentialPoints.h,
-                differential-points.csv and .png)
+  bunny         the Stanford bunny seen whole; reference: the mesh (vtkPolyDataMapper) at 4x4
+                supersampling; then differential points against surfels on it
+                (SplatReportDifferentialPoints.h, differential-points.csv and .png)
+  bunny-closeup the bunny's flank magnified, splats several pixels wide
+  armadillo, armadillo-closeup
+                CGAL's armadillo (Debian's libcgal-demo) seen whole and magnified
+  sphere        a sphere of --points vertices seen whole, several surfels to a pixel
+                (SplatReportMeshes.h for these scenes; the same kind of reference)
   mri           the MRI head ch2.nii.gz (Debian's mricron-data; skipped when absent), shrunk by
                 --mri-shrink (vtkImageShrink3D, block means), in TestVolumeSplatCrossRenderer's
                 transfer functions and camera
@@ -144,8 +152,9 @@ absolute difference) for every case. Prints the tables.
 
 Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separated):
   --output-dir DIR   output folder (default $SPLAT_OUTPUT_DIR/report, else output/report)
-  --scenes LIST      checkerboard, textured-plane, bunny, mri, gaussians, vdb, stability
-                     (default all; bunny and mri are skipped when absent)
+  --scenes LIST      checkerboard, textured-plane, bunny, bunny-closeup, armadillo,
+                     armadillo-closeup, sphere, mri, gaussians, vdb, stability, captures
+                     (default all; the scans and mri are skipped when absent)
   --backends LIST    the splat mappers' backends: cpu, opengl (default: both for the surface
                      scenes, cpu for the volume scenes; a list given here applies to both;
                      under a software OpenGL renderer such as llvmpipe the OpenGL rows are slow)
@@ -153,7 +162,8 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
   --rounds N         rounds over all cases (default 4)
   --frames N         timed frames per case and round (default 3)
   --budget SECONDS   fewer frames (at least 1) once a case's round took this long (default 3)
-  --points N         about how many surfels the checkerboard gets (default 1000000)
+  --points N         about how many surfels the checkerboard and the sphere get (default
+                     1000000)
   --samples N        reference sub-samples per pixel and axis (default 16)
   --volume-size N    the volume scenes' image size, N x N pixels (default 256)
   --mri-shrink N     the MRI's every N-th voxel per axis (default 2)
@@ -193,7 +203,8 @@ Options ParseCommandLine(int argc, char* argv[])
     { "--scenes",
       [&](const std::string& name, const std::string& value) {
         options.Scenes = splatexample::SplitList(
-          name, value, { "checkerboard", "textured-plane", "bunny", "mri", "gaussians", "vdb",
+          name, value, { "checkerboard", "textured-plane", "bunny", "bunny-closeup",
+                         "armadillo", "armadillo-closeup", "sphere", "mri", "gaussians", "vdb",
                          "stability", "captures" });
       } },
     { "--backends",
@@ -241,32 +252,6 @@ Options ParseCommandLine(int argc, char* argv[])
   splatexample::ParseArguments(argc, argv, Usage, handlers, flags);
   return options;
 }
-
-//------------------------------------------------------------------------------------------------
-// The bunny scene: the mesh with smooth normals, or nullptr when bunny.ply is absent.
-vtkSmartPointer<vtkPolyData> BunnyMesh()
-{
-  const std::string file = splatexample::BunnyFile();
-  if (!vtkSplatPLYReader::CanReadFile(file.c_str()))
-  {
-    std::cerr << "splat_report: bunny scene skipped: " << file << " is absent or unreadable\n";
-    return nullptr;
-  }
-  vtkNew<vtkSplatPLYReader> reader;
-  reader->SetFileName(file.c_str());
-  // The scan has vertices that no triangle uses (vtkSurfelGenerator gives them no radius):
-  // dropped, so triangles and surfels cover the same surface.
-  vtkNew<vtkCleanPolyData> clean;
-  clean->SetInputConnection(reader->GetOutputPort());
-  clean->PointMergingOff();
-  vtkNew<vtkPolyDataNormals> normals; // the same normals for the triangles and the surfels
-  normals->SetInputConnection(clean->GetOutputPort());
-  normals->SplittingOff();
-  normals->ConsistencyOn();
-  normals->Update();
-  return normals->GetOutput();
-}
-
 
 // Appends the milliseconds of each timed frame, after a warm-up frame, to `ms`: Frames frames,
 // fewer once the budget is spent (at least one). A volume is marked modified before each frame,
@@ -359,6 +344,14 @@ std::string CountsOf(vtkProp3D* prop)
   return "";
 }
 
+// The splats vtkSurfaceSplatMapper drew in the last frame, or -1 for other mappers.
+long long DrawnSplats(vtkProp3D* prop)
+{
+  auto* actor = vtkActor::SafeDownCast(prop);
+  auto* splat = vtkSurfaceSplatMapper::SafeDownCast(actor ? actor->GetMapper() : nullptr);
+  return splat ? static_cast<long long>(splat->GetNumberOfRenderedSplats()) : -1;
+}
+
 // Renders every case's prop (makeProp) into `window` (whose renderer holds the camera) and
 // measures each image against `reference` (and `alternative`). The cases are timed in rounds,
 // all cases once per round, so that a change of the machine's load while the report runs spreads
@@ -415,7 +408,7 @@ std::vector<Row> MeasureScene(vtkRenderWindow* window, vtkRenderer* renderer,
       const std::string counts = CountsOf(prop);
       rows[i] = { scene, &c, c.Threads > 0 ? threads : 0, splatexample::Median(ms[i]),
         compared.rms_error, compared.PSNR, comparedAlt.rms_error, comparedAlt.PSNR, false,
-        name + ".png", counts };
+        name + ".png", counts, DrawnSplats(prop) };
     }
   }
   renderer->RemoveAllViewProps();
@@ -630,71 +623,63 @@ int Run(const Options& options)
     md << MeasureCaptures(options);
   }
 
-  if (wants("bunny"))
+  for (const MeshScene& scene : MeshScenes(options.Scenes, options.Points, notes))
   {
-    if (vtkSmartPointer<vtkPolyData> mesh = BunnyMesh())
-    {
-      vtkNew<vtkSurfelGenerator> generator;
-      generator->SetInputData(mesh);
-      generator->Update();
-      vtkPolyData* surfels = generator->GetOutput();
-      const double color[3] = { 0.85, 0.75, 0.6 };
-      renderer->SetBackground(0.1, 0.1, 0.15);
-      renderer->RemoveAllViewProps();
-      vtkCamera* camera = renderer->GetActiveCamera();
-      camera->SetPosition(0, 0, 1);
-      camera->SetFocalPoint(0, 0, 0);
-      camera->SetViewUp(0, 1, 0);
-      camera->SetViewAngle(30.0);
-      renderer->ResetCamera(mesh->GetBounds());
-      camera->Azimuth(25.0);
-      camera->Elevation(10.0);
-      camera->OrthogonalizeViewUp();
-      camera->Dolly(1.3);
-      renderer->ResetCameraClippingRange(surfels->GetBounds());
+    vtkNew<vtkSurfelGenerator> generator;
+    generator->SetInputData(scene.Mesh);
+    generator->Update();
+    vtkPolyData* surfels = generator->GetOutput();
+    const double* color = scene.Color;
+    const double background[3] = { 0.1, 0.1, 0.15 };
+    renderer->SetBackground(background[0], background[1], background[2]);
+    renderer->RemoveAllViewProps();
+    scene.PlaceCamera(renderer);
 
-      std::cerr << "splat_report: bunny: reference (the mesh at 4x4 supersampling)" << std::endl;
-      vtkNew<vtkPolyDataMapper> meshMapper;
-      meshMapper->SetInputData(mesh);
-      meshMapper->ScalarVisibilityOff();
-      vtkNew<vtkActor> meshActor;
-      meshActor->SetMapper(meshMapper);
-      meshActor->GetProperty()->SetColor(color[0], color[1], color[2]);
-      renderer->AddActor(meshActor);
-      // [0] Gaussian then box (the alternative), [1] the 4x4 box (the reference).
-      const std::array<OIIO::ImageBuf, 2> references = CaptureSupersampled(window, 4);
-      renderer->RemoveAllViewProps();
-      WriteImage(references[1], options.OutputDir + "/bunny-reference.png");
-      WriteImage(references[0], options.OutputDir + "/bunny-reference-gaussian.png");
+    std::cerr << "splat_report: " << scene.Name << ": reference (the mesh at 4x4 supersampling)"
+              << std::endl;
+    vtkNew<vtkPolyDataMapper> meshMapper;
+    meshMapper->SetInputData(scene.Mesh);
+    meshMapper->ScalarVisibilityOff();
+    vtkNew<vtkActor> meshActor;
+    meshActor->SetMapper(meshMapper);
+    meshActor->GetProperty()->SetColor(color[0], color[1], color[2]);
+    renderer->AddActor(meshActor);
+    // [0] Gaussian then box (the alternative), [1] the 4x4 box (the reference).
+    const std::array<OIIO::ImageBuf, 2> references = CaptureSupersampled(window, 4);
+    renderer->RemoveAllViewProps();
+    WriteImage(references[1], options.OutputDir + "/" + scene.Name + "-reference.png");
+    WriteImage(references[0], options.OutputDir + "/" + scene.Name + "-reference-gaussian.png");
 
-      const auto style = [color](vtkActor* actor) {
-        actor->GetProperty()->SetColor(color[0], color[1], color[2]);
-        actor->GetMapper()->ScalarVisibilityOff();
-      };
-      std::vector<Row> sceneRows = MeasureScene(window, renderer, "bunny",
-        SurfaceProps(surfels, style), references[1], references[0], cases, options, notes);
-      rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());
-      scenes.push_back("bunny");
-      md << "## bunny\n\n"
-         << "The Stanford bunny (" << mesh->GetNumberOfPoints() << " vertices, "
-         << mesh->GetNumberOfPolys() << " triangles), lit by the renderer's headlight. Surfels: "
-         << "vtkSurfelGenerator on the mesh (" << surfels->GetNumberOfPoints()
-         << " points, radius from the longest edge at each vertex). Reference: the mesh drawn "
-         << "by vtkPolyDataMapper at 4x the size, 4x4 blocks averaged. The last column measures "
-         << "against the same large image filtered like EWA's screen filter (a Gaussian of "
-         << "variance 1 - 1/12 pixels^2, then the 4x4 box: unit variance in all, "
-         << "`bunny-reference-gaussian.png`).\n\n"
-         << MarkdownTable(sceneRows, "Gaussian-filtered reference") << "\n"
-         << MeasureDifferentialPoints(window, renderer, mesh, references[1], color, options,
-              [&]() {
-                std::vector<double> ms;
-                TimeFrames(window, options, ms, nullptr);
-                return splatexample::Median(ms);
-              });
-    }
-    else
+    const auto style = [color](vtkActor* actor) {
+      actor->GetProperty()->SetColor(color[0], color[1], color[2]);
+      actor->GetMapper()->ScalarVisibilityOff();
+    };
+    std::vector<Row> sceneRows = MeasureScene(window, renderer, scene.Name,
+      SurfaceProps(surfels, style), references[1], references[0], cases, options, notes);
+    rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());
+    scenes.push_back(scene.Name);
+    const long long covered = CoveredPixels(references[1], background);
+    md << "## " << scene.Name << "\n\n"
+       << scene.Description << " (" << scene.Mesh->GetNumberOfPoints() << " vertices, "
+       << scene.Mesh->GetNumberOfPolys() << " triangles), lit by the renderer's headlight, "
+       << options.Width << "x" << options.Height << " pixels, " << covered
+       << " of them covered by the mesh. Surfels: vtkSurfelGenerator on the mesh ("
+       << surfels->GetNumberOfPoints() << " points, radius from the longest edge at each vertex); "
+       << "the default draws " << Fixed(DefaultSplats(sceneRows) / std::max(1.0, double(covered)), 2)
+       << " splats per covered pixel. Reference: the mesh drawn "
+       << "by vtkPolyDataMapper at 4x the size, 4x4 blocks averaged. The last column measures "
+       << "against the same large image filtered like EWA's screen filter (a Gaussian of "
+       << "variance 1 - 1/12 pixels^2, then the 4x4 box: unit variance in all, `" << scene.Name
+       << "-reference-gaussian.png`).\n\n"
+       << MarkdownTable(sceneRows, "Gaussian-filtered reference") << "\n";
+    if (scene.Name == "bunny")
     {
-      notes.push_back("bunny scene skipped: bunny.ply not found (set SPLAT_DATA_DIR)");
+      md << MeasureDifferentialPoints(window, renderer, scene.Mesh, references[1], color, options,
+        [&]() {
+          std::vector<double> ms;
+          TimeFrames(window, options, ms, nullptr);
+          return splatexample::Median(ms);
+        });
     }
   }
   const std::vector<Case> volumeCases = VolumeCases(options.VolumeBackends);

@@ -21,6 +21,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include <array>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -35,6 +36,24 @@ inline OIIO::ImageBuf ToImageBuf(vtkImageData* image, float scale)
   OIIO::ImageBuf wrapped(
     OIIO::ImageSpec(dims[0], dims[1], 3, OIIO::TypeDesc::FLOAT), image->GetScalarPointer());
   return OIIO::ImageBufAlgo::mul(OIIO::ImageBufAlgo::flip(wrapped), scale);
+}
+
+// The pixels of `image` whose color differs from `background` by more than 1/255 in a channel.
+inline long long CoveredPixels(const OIIO::ImageBuf& image, const double background[3])
+{
+  long long covered = 0;
+  for (OIIO::ImageBuf::ConstIterator<float> pixel(image); !pixel.done(); ++pixel)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (std::abs(pixel[c] - background[c]) > 1.0 / 255.0)
+      {
+        ++covered;
+        break;
+      }
+    }
+  }
+  return covered;
 }
 
 // The window rendered at `factor` times its size, reduced to its size with two pixel filters:

@@ -47,7 +47,21 @@ struct Row
   bool Pareto = false;
   std::string Image;
   std::string Counts; // what vtkSurfaceSplatMapper says it did in the last frame
+  long long Splats = -1; // splats vtkSurfaceSplatMapper drew in the last frame (-1: not ours)
 };
+
+// The splats drawn by the default setting on the CPU, or -1.
+inline long long DefaultSplats(const std::vector<Row>& rows)
+{
+  for (const Row& row : rows)
+  {
+    if (row.What->IsDefault && row.What->Backend == "CPU")
+    {
+      return row.Splats;
+    }
+  }
+  return -1;
+}
 
 inline void WriteCsv(const std::vector<Row>& rows, const std::string& path)
 {

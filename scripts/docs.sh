@@ -119,9 +119,10 @@ figures() {
   say "the bench subset (the peers in the same run)"
   "$BUILD/bin/splat_bench" --scenes sphere,3dgs,mri,vdb --sizes 512 --backends cpu \
     --points 1000000 --output "$WORK/bench.csv" > "$WORK/bench.log"
-  say "the report (checkerboard, bunny, mri, gaussians, vdb, captures, stability)"
+  say "the report (checkerboard, the meshes, mri, gaussians, vdb, captures, stability)"
   mkdir -p "$DOCS/report"
-  "$BUILD/bin/splat_report" --scenes checkerboard,bunny,mri,gaussians,vdb,captures,stability \
+  "$BUILD/bin/splat_report" \
+    --scenes checkerboard,bunny,bunny-closeup,armadillo,armadillo-closeup,sphere,mri,gaussians,vdb,captures,stability \
     --backends cpu --output-dir "$WORK/report" > "$WORK/report.log"
   cp "$WORK/report/error_vs_time.md" "$WORK/report/error_vs_time.png" \
     "$WORK/report/stability.md" "$WORK/report/captures.md" "$DOCS/report/"

@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// splat_report's mesh scenes: real scans and a finely tessellated sphere, drawn by the surfels of
+// their vertices (vtkSurfelGenerator) against the mesh itself drawn by vtkPolyDataMapper at 4x4
+// supersampling. Each scan is seen whole and magnified, and the sphere's million vertices are
+// seen whole, many to a pixel: the surface mapper's defaults are measured where splats are
+// smaller than a pixel, where they are several pixels wide, and in between.
+#ifndef SplatReportMeshes_h
+#define SplatReportMeshes_h
+
+#include "SplatExampleUtilities.h"
+#include "SplatFileReaders.h"
+#include "vtkSplatPLYReader.h"
+
+#include "vtkCamera.h"
+#include "vtkCleanPolyData.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+
+#include <vtksys/SystemTools.hxx>
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace splatreport
+{
+/// A mesh seen from one camera.
+struct MeshScene
+{
+  std::string Name;                  ///< the --scenes name and the images' prefix
+  std::string Description;           ///< what the mesh is, for the Markdown text
+  vtkSmartPointer<vtkPolyData> Mesh; ///< triangles with point normals
+  double Azimuth = 0.0;              ///< degrees around the view up, from the +z view
+  double Elevation = 0.0;            ///< degrees
+  double Dolly = 1.0;                ///< after ResetCamera: above 1 magnifies
+  double Color[3] = { 0.85, 0.75, 0.6 };
+
+  /// Places the camera: the mesh's bounds reset into a 30-degree view from +z, then turned and
+  /// moved closer.
+  void PlaceCamera(vtkRenderer* renderer) const
+  {
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetPosition(0, 0, 1);
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetViewAngle(30.0);
+    renderer->ResetCamera(this->Mesh->GetBounds());
+    camera->Azimuth(this->Azimuth);
+    camera->Elevation(this->Elevation);
+    camera->OrthogonalizeViewUp();
+    camera->Dolly(this->Dolly);
+    renderer->ResetCameraClippingRange(this->Mesh->GetBounds());
+  }
+};
+
+/// The mesh with smooth, consistently oriented point normals, the same for its triangles and its
+/// surfels. Vertices that no triangle uses are dropped (vtkSurfelGenerator gives them no
+/// radius), so that triangles and surfels cover the same surface.
+inline vtkSmartPointer<vtkPolyData> SmoothMesh(vtkPolyData* mesh)
+{
+  vtkNew<vtkCleanPolyData> clean;
+  clean->SetInputData(mesh);
+  clean->PointMergingOff();
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputConnection(clean->GetOutputPort());
+  normals->SplittingOff();
+  normals->ConsistencyOn();
+  normals->Update();
+  return normals->GetOutput();
+}
+
+/// The Stanford bunny of the shared data, or nullptr (with a note) when it is absent.
+inline vtkSmartPointer<vtkPolyData> BunnyMesh(std::vector<std::string>& notes)
+{
+  const std::string file = splatexample::BunnyFile();
+  if (!vtkSplatPLYReader::CanReadFile(file.c_str()))
+  {
+    notes.push_back("bunny scenes skipped: " + file + " is absent (set SPLAT_DATA_DIR)");
+    return nullptr;
+  }
+  vtkNew<vtkSplatPLYReader> reader;
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  return SmoothMesh(reader->GetOutput());
+}
+
+/// CGAL's armadillo (Debian's libcgal-demo), or nullptr (with a note) when it is absent.
+inline vtkSmartPointer<vtkPolyData> ArmadilloMesh(std::vector<std::string>& notes)
+{
+  if (!vtksys::SystemTools::FileExists(splatexample::CgalData, true))
+  {
+    notes.push_back(std::string("armadillo scenes skipped: ") + splatexample::CgalData +
+      " is absent (Debian package libcgal-demo)");
+    return nullptr;
+  }
+  return SmoothMesh(splatexample::ReadCgalArmadillo());
+}
+
+/// A unit sphere of about `vertices` vertices (a latitude-longitude tessellation).
+inline vtkSmartPointer<vtkPolyData> SphereMesh(long long vertices)
+{
+  vtkNew<vtkSphereSource> sphere;
+  const int resolution = std::max(8, static_cast<int>(std::sqrt(static_cast<double>(vertices))));
+  sphere->SetThetaResolution(resolution);
+  sphere->SetPhiResolution(resolution);
+  sphere->SetRadius(1.0);
+  sphere->Update();
+  return sphere->GetOutput();
+}
+
+/// The mesh scenes among `wanted` (scene names), in the report's order; scenes whose data are
+/// absent are left out with a note.
+inline std::vector<MeshScene> MeshScenes(
+  const std::vector<std::string>& wanted, long long sphereVertices, std::vector<std::string>& notes)
+{
+  const auto wants = [&](const std::string& name)
+  { return std::find(wanted.begin(), wanted.end(), name) != wanted.end(); };
+  std::vector<MeshScene> scenes;
+  if (wants("bunny") || wants("bunny-closeup"))
+  {
+    if (vtkSmartPointer<vtkPolyData> bunny = BunnyMesh(notes))
+    {
+      const std::string what = "The Stanford bunny (range scans merged by zippering, `bunny.ply` "
+                               "of the shared data)";
+      if (wants("bunny"))
+      {
+        scenes.push_back({ "bunny", what + ", seen whole", bunny, 25.0, 10.0, 1.3 });
+      }
+      if (wants("bunny-closeup"))
+      {
+        scenes.push_back(
+          { "bunny-closeup", what + ", its flank seen magnified", bunny, 25.0, 10.0, 4.0 });
+      }
+    }
+  }
+  if (wants("armadillo") || wants("armadillo-closeup"))
+  {
+    if (vtkSmartPointer<vtkPolyData> armadillo = ArmadilloMesh(notes))
+    {
+      const std::string what = "The Stanford armadillo as CGAL ships it (a scan, decimated; "
+                               "`armadillo.off` of Debian's libcgal-demo)";
+      if (wants("armadillo"))
+      {
+        scenes.push_back({ "armadillo", what + ", seen whole", armadillo, 160.0, 10.0, 1.3 });
+      }
+      if (wants("armadillo-closeup"))
+      {
+        scenes.push_back({ "armadillo-closeup", what + ", its torso seen magnified", armadillo,
+          160.0, 10.0, 3.5 });
+      }
+    }
+  }
+  if (wants("sphere"))
+  {
+    scenes.push_back({ "sphere",
+      "A unit sphere tessellated by latitude and longitude (vtkSphereSource), seen whole: its "
+      "surfels crowd several to a pixel",
+      SphereMesh(sphereVertices), 25.0, 10.0, 1.0 });
+  }
+  return scenes;
+}
+
+/// The mesh scenes' names, for --scenes.
+inline std::vector<std::string> MeshSceneNames()
+{
+  return { "bunny", "bunny-closeup", "armadillo", "armadillo-closeup", "sphere" };
+}
+}
+
+#endif
