@@ -22,7 +22,9 @@
 
 #include <vtksys/SystemTools.hxx>
 
-#include <iostream>
+#include <algorithm>
+#include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -120,40 +122,37 @@ inline std::vector<MeshScene> MeshScenes(
   const auto wants = [&](const std::string& name)
   { return std::find(wanted.begin(), wanted.end(), name) != wanted.end(); };
   std::vector<MeshScene> scenes;
-  if (wants("bunny") || wants("bunny-closeup"))
+  // A scan seen whole (dolly 1.3), then its `part` magnified (dolly `closeup`); `read` only when
+  // either view is wanted.
+  const auto addScan = [&](const std::string& name, const std::string& what, double azimuth,
+                         const char* part, double closeup,
+                         const std::function<vtkSmartPointer<vtkPolyData>()>& read)
   {
-    if (vtkSmartPointer<vtkPolyData> bunny = BunnyMesh(notes))
+    const std::string magnified = name + "-closeup";
+    if (!wants(name) && !wants(magnified))
     {
-      const std::string what = "The Stanford bunny (range scans merged by zippering, `bunny.ply` "
-                               "of the shared data)";
-      if (wants("bunny"))
+      return;
+    }
+    if (vtkSmartPointer<vtkPolyData> mesh = read())
+    {
+      if (wants(name))
       {
-        scenes.push_back({ "bunny", what + ", seen whole", bunny, 25.0, 10.0, 1.3 });
+        scenes.push_back({ name, what + ", seen whole", mesh, azimuth, 10.0, 1.3 });
       }
-      if (wants("bunny-closeup"))
+      if (wants(magnified))
       {
-        scenes.push_back(
-          { "bunny-closeup", what + ", its flank seen magnified", bunny, 25.0, 10.0, 4.0 });
+        scenes.push_back({ magnified, what + ", " + part + " seen magnified", mesh, azimuth,
+          10.0, closeup });
       }
     }
-  }
-  if (wants("armadillo") || wants("armadillo-closeup"))
-  {
-    if (vtkSmartPointer<vtkPolyData> armadillo = ArmadilloMesh(notes))
-    {
-      const std::string what = "The Stanford armadillo as CGAL ships it (a scan, decimated; "
-                               "`armadillo.off` of Debian's libcgal-demo)";
-      if (wants("armadillo"))
-      {
-        scenes.push_back({ "armadillo", what + ", seen whole", armadillo, 160.0, 10.0, 1.3 });
-      }
-      if (wants("armadillo-closeup"))
-      {
-        scenes.push_back({ "armadillo-closeup", what + ", its torso seen magnified", armadillo,
-          160.0, 10.0, 3.5 });
-      }
-    }
-  }
+  };
+  addScan("bunny",
+    "The Stanford bunny (range scans merged by zippering, `bunny.ply` of the shared data)", 25.0,
+    "its flank", 4.0, [&] { return BunnyMesh(notes); });
+  addScan("armadillo",
+    "The Stanford armadillo as CGAL ships it (a scan, decimated; `armadillo.off` of Debian's "
+    "libcgal-demo)",
+    160.0, "its torso", 3.5, [&] { return ArmadilloMesh(notes); });
   if (wants("sphere"))
   {
     scenes.push_back({ "sphere",
