@@ -114,6 +114,9 @@ variance), offscreen, and measures each image against a reference:
   bunny-closeup the bunny's flank magnified, splats several pixels wide
   armadillo, armadillo-closeup
                 CGAL's armadillo (Debian's libcgal-demo) seen whole and magnified
+  armadillo-points
+                the magnified armadillo drawn from a random point cloud on its triangles, with
+                the normals and radii vtkSurfelGenerator estimates (a scan without its mesh)
   sphere        a sphere of --points vertices seen whole, several surfels to a pixel
                 (SplatReportMeshes.h for these scenes; the same kind of reference)
   mri           the MRI head ch2.nii.gz (Debian's mricron-data; skipped when absent), shrunk by
@@ -153,7 +156,8 @@ absolute difference) for every case. Prints the tables.
 Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separated):
   --output-dir DIR   output folder (default $SPLAT_OUTPUT_DIR/report, else output/report)
   --scenes LIST      checkerboard, textured-plane, bunny, bunny-closeup, armadillo,
-                     armadillo-closeup, sphere, mri, gaussians, vdb, stability, captures
+                     armadillo-closeup, armadillo-points, sphere, mri, gaussians, vdb,
+                     stability, captures
                      (default all; the scans and mri are skipped when absent)
   --backends LIST    the splat mappers' backends: cpu, opengl (default: both for the surface
                      scenes, cpu for the volume scenes; a list given here applies to both;
@@ -204,8 +208,8 @@ Options ParseCommandLine(int argc, char* argv[])
       [&](const std::string& name, const std::string& value) {
         options.Scenes = splatexample::SplitList(
           name, value, { "checkerboard", "textured-plane", "bunny", "bunny-closeup",
-                         "armadillo", "armadillo-closeup", "sphere", "mri", "gaussians", "vdb",
-                         "stability", "captures" });
+                         "armadillo", "armadillo-closeup", "armadillo-points", "sphere", "mri",
+                         "gaussians", "vdb", "stability", "captures" });
       } },
     { "--backends",
       [&](const std::string& name, const std::string& value) {
@@ -625,10 +629,7 @@ int Run(const Options& options)
 
   for (const MeshScene& scene : MeshScenes(options.Scenes, options.Points, notes))
   {
-    vtkNew<vtkSurfelGenerator> generator;
-    generator->SetInputData(scene.Mesh);
-    generator->Update();
-    vtkPolyData* surfels = generator->GetOutput();
+    vtkSmartPointer<vtkPolyData> surfels = SceneSurfels(scene);
     const double* color = scene.Color;
     const double background[3] = { 0.1, 0.1, 0.15 };
     renderer->SetBackground(background[0], background[1], background[2]);
@@ -660,12 +661,12 @@ int Run(const Options& options)
     scenes.push_back(scene.Name);
     const long long covered = CoveredPixels(references[1], background);
     md << "## " << scene.Name << "\n\n"
-       << scene.Description << " (" << scene.Mesh->GetNumberOfPoints() << " vertices, "
-       << scene.Mesh->GetNumberOfPolys() << " triangles), lit by the renderer's headlight, "
-       << options.Width << "x" << options.Height << " pixels, " << covered
-       << " of them covered by the mesh. Surfels: vtkSurfelGenerator on the mesh ("
-       << surfels->GetNumberOfPoints() << " points, radius from the longest edge at each vertex); "
-       << "the default draws " << Fixed(DefaultSplats(sceneRows) / std::max(1.0, double(covered)), 2)
+       << scene.What << " (" << scene.Mesh->GetNumberOfPoints() << " vertices, "
+       << scene.Mesh->GetNumberOfPolys() << " triangles), " << scene.View
+       << ", lit by the renderer's headlight, " << options.Width << "x" << options.Height
+       << " pixels, " << covered << " of them covered by the mesh. Surfels: "
+       << SurfelsText(scene, surfels->GetNumberOfPoints()) << "; the default draws "
+       << Fixed(DefaultSplats(sceneRows) / std::max(1.0, double(covered)), 2)
        << " splats per covered pixel. Reference: the mesh drawn "
        << "by vtkPolyDataMapper at 4x the size, 4x4 blocks averaged. The last column measures "
        << "against the same large image filtered like EWA's screen filter (a Gaussian of "

@@ -36,8 +36,8 @@ struct Options
 {
   std::string OutputDir;
   std::vector<std::string> Scenes = { "checkerboard", "textured-plane", "bunny", "bunny-closeup",
-    "armadillo", "armadillo-closeup", "sphere", "mri", "gaussians", "vdb", "stability",
-    "captures" };
+    "armadillo", "armadillo-closeup", "armadillo-points", "sphere", "mri", "gaussians", "vdb",
+    "stability", "captures" };
   std::vector<std::string> Backends = { "cpu", "opengl" };
   std::vector<std::string> VolumeBackends = { "cpu" }; // --backends sets both
   int VolumeSize = 256;

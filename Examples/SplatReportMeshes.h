@@ -9,13 +9,19 @@
 
 #include "SplatExampleUtilities.h"
 #include "SplatFileReaders.h"
+#include "SplatReportCases.h"
 #include "vtkSplatPLYReader.h"
+#include "vtkSurfelGenerator.h"
 
 #include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkCleanPolyData.h"
+#include "vtkIdList.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataNormals.h"
+#include "vtkPolyDataPointSampler.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
@@ -34,12 +40,17 @@ namespace splatreport
 struct MeshScene
 {
   std::string Name;                  ///< the --scenes name and the images' prefix
-  std::string Description;           ///< what the mesh is, for the Markdown text
+  std::string What;                  ///< what the mesh is, for the Markdown text
+  std::string View;                  ///< how it is seen, for the Markdown text
   vtkSmartPointer<vtkPolyData> Mesh; ///< triangles with point normals
   double Azimuth = 0.0;              ///< degrees around the view up, from the +z view
   double Elevation = 0.0;            ///< degrees
   double Dolly = 1.0;                ///< after ResetCamera: above 1 magnifies
   double Color[3] = { 0.85, 0.75, 0.6 };
+  /// Above 0: the surfels come from points scattered at random over the triangles about this
+  /// far apart, with the normals and radii vtkSurfelGenerator estimates for a point cloud (a
+  /// scan's points, irregular, without the mesh), instead of from the mesh's vertices.
+  double SampleDistance = 0.0;
 
   /// Places the camera: the mesh's bounds reset into a 30-degree view from +z, then turned and
   /// moved closer.
@@ -58,6 +69,69 @@ struct MeshScene
     renderer->ResetCameraClippingRange(this->Mesh->GetBounds());
   }
 };
+
+/// The mean length of a mesh's polygon edges (each interior edge counted from both sides).
+inline double MeanEdgeLength(vtkPolyData* mesh)
+{
+  double sum = 0.0;
+  vtkIdType edges = 0;
+  vtkNew<vtkIdList> ids;
+  vtkCellArray* polys = mesh->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(ids);)
+  {
+    for (vtkIdType i = 0; i < ids->GetNumberOfIds(); ++i)
+    {
+      double a[3], b[3];
+      mesh->GetPoint(ids->GetId(i), a);
+      mesh->GetPoint(ids->GetId((i + 1) % ids->GetNumberOfIds()), b);
+      sum += std::sqrt(vtkMath::Distance2BetweenPoints(a, b));
+      ++edges;
+    }
+  }
+  return edges > 0 ? sum / edges : 0.0;
+}
+
+/// What a scene's surfels are (`count` of them), for the Markdown text.
+inline std::string SurfelsText(const MeshScene& scene, vtkIdType count)
+{
+  vtkNew<vtkSurfelGenerator> generator;
+  return scene.SampleDistance > 0.0
+    ? "vtkSurfelGenerator on a point cloud scattered at random over the triangles "
+      "(vtkPolyDataPointSampler, about " + Fixed(scene.SampleDistance, 3) + " apart, three times "
+      "the vertices' density; " + std::to_string(count) + " points), with the normals it fits "
+      "and the radius from the mean distance to the " +
+      std::to_string(generator->GetNumberOfNeighbors()) + " nearest points"
+    : "vtkSurfelGenerator on the mesh's vertices (" + std::to_string(count) +
+      " points, radius from the longest edge at each vertex)";
+}
+
+/// The surfels of a scene: its mesh's vertices, or a point cloud sampled from its triangles.
+inline vtkSmartPointer<vtkPolyData> SceneSurfels(const MeshScene& scene)
+{
+  vtkNew<vtkSurfelGenerator> generator;
+  if (scene.SampleDistance > 0.0)
+  {
+    vtkNew<vtkPolyDataPointSampler> sampler;
+    sampler->SetInputData(scene.Mesh);
+    sampler->SetPointGenerationModeToRandom();
+    sampler->SetDistance(scene.SampleDistance);
+    sampler->GenerateVertexPointsOff();
+    sampler->GenerateEdgePointsOff();
+    sampler->GenerateVerticesOn();
+    sampler->Update();
+    // Points only: the cloud's normals are estimated, not the mesh's.
+    vtkNew<vtkPolyData> cloud;
+    cloud->SetPoints(sampler->GetOutput()->GetPoints());
+    cloud->SetVerts(sampler->GetOutput()->GetVerts());
+    generator->SetInputData(cloud);
+  }
+  else
+  {
+    generator->SetInputData(scene.Mesh);
+  }
+  generator->Update();
+  return generator->GetOutput();
+}
 
 /// The mesh with smooth, consistently oriented point normals, the same for its triangles and its
 /// surfels. Vertices that no triangle uses are dropped (vtkSurfelGenerator gives them no
@@ -129,7 +203,8 @@ inline std::vector<MeshScene> MeshScenes(
                          const std::function<vtkSmartPointer<vtkPolyData>()>& read)
   {
     const std::string magnified = name + "-closeup";
-    if (!wants(name) && !wants(magnified))
+    const std::string points = name + "-points";
+    if (!wants(name) && !wants(magnified) && !wants(points))
     {
       return;
     }
@@ -137,12 +212,19 @@ inline std::vector<MeshScene> MeshScenes(
     {
       if (wants(name))
       {
-        scenes.push_back({ name, what + ", seen whole", mesh, azimuth, 10.0, 1.3 });
+        scenes.push_back({ name, what, "seen whole", mesh, azimuth, 10.0, 1.3 });
       }
       if (wants(magnified))
       {
-        scenes.push_back({ magnified, what + ", " + part + " seen magnified", mesh, azimuth,
-          10.0, closeup });
+        scenes.push_back(
+          { magnified, what, part + std::string(" seen magnified"), mesh, azimuth, 10.0, closeup });
+      }
+      if (wants(points))
+      {
+        // Three times the vertices' density, so that the splats are about as large on screen.
+        const double spacing = MeanEdgeLength(mesh) / std::sqrt(3.0);
+        scenes.push_back({ points, what, part + std::string(" seen magnified"), mesh, azimuth,
+          10.0, closeup, { 0.85, 0.75, 0.6 }, spacing });
       }
     }
   };
@@ -156,17 +238,11 @@ inline std::vector<MeshScene> MeshScenes(
   if (wants("sphere"))
   {
     scenes.push_back({ "sphere",
-      "A unit sphere tessellated by latitude and longitude (vtkSphereSource), seen whole: its "
-      "surfels crowd several to a pixel",
+      "A unit sphere tessellated by latitude and longitude (vtkSphereSource)",
+      "seen whole: its surfels crowd several to a pixel",
       SphereMesh(sphereVertices), 25.0, 10.0, 1.0 });
   }
   return scenes;
-}
-
-/// The mesh scenes' names, for --scenes.
-inline std::vector<std::string> MeshSceneNames()
-{
-  return { "bunny", "bunny-closeup", "armadillo", "armadillo-closeup", "sphere" };
 }
 }
 
