@@ -2,7 +2,7 @@
 # Regenerates the pictures and figures of the README and docs/ (./splat docs): nothing in them
 # is copied by hand.
 #
-#   scripts/docs.sh BUILD_DIR [images|screenshots|figures|all]
+#   scripts/docs.sh BUILD_DIR [images|screenshots|figures|memory|all]
 #
 # images   the README's four result images (docs/images/{bunny,mri,cloud,donut}.png) and the
 #          capture rows of the quality gallery (docs/quality.md), drawn by splat_render on the
@@ -13,14 +13,16 @@
 # figures  docs/performance.md and docs/report/: a subset of the bench (the peers in the same
 #          run), the error-against-time report of the surface and volume scenes (tables, plot,
 #          the gallery's surface rows from its checkerboard), the captures' and the stability
-#          tables, stamped with the machine and the commit; about 10 minutes on 2 cores.
+#          tables, stamped with the machine and the commit; about 12 minutes on 2 cores.
+# memory   the memory table of docs/memory-and-threads.md: the bench at two counts per case
+#          (scripts/memory-table.awk), stamped; about 5 minutes on 2 cores.
 #
 # Runs under the caller's X server (./splat runs it under Xvfb). Images whose input is absent
 # (the shared captures, Debian's MRI) are left as they are, with a message.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-BUILD="${1:?usage: scripts/docs.sh BUILD_DIR [images|screenshots|figures|all]}"
+BUILD="${1:?usage: scripts/docs.sh BUILD_DIR [images|screenshots|figures|memory|all]}"
 WHAT="${2:-all}"
 DATA="$ROOT/../shared/data"
 DOCS="$ROOT/docs"
@@ -122,7 +124,7 @@ figures() {
   say "the report (checkerboard, the meshes, mri, gaussians, vdb, captures, stability)"
   mkdir -p "$DOCS/report"
   "$BUILD/bin/splat_report" \
-    --scenes checkerboard,bunny,bunny-closeup,armadillo,armadillo-closeup,sphere,mri,gaussians,vdb,captures,stability \
+    --scenes checkerboard,bunny,bunny-closeup,armadillo,armadillo-closeup,armadillo-points,sphere,mri,gaussians,vdb,captures,stability \
     --backends cpu --output-dir "$WORK/report" > "$WORK/report.log"
   cp "$WORK/report/error_vs_time.md" "$WORK/report/error_vs_time.png" \
     "$WORK/report/stability.md" "$WORK/report/captures.md" "$DOCS/report/"
@@ -154,6 +156,48 @@ EOF
     printf '\n'
     stamp
   } > "$DOCS/performance.md"
+}
+
+# memory_run ARGS...: splat_bench ARGS, one timed frame per case, its CSV rows appended to
+# $WORK/memory.csv.
+memory_run() {
+  "$BUILD/bin/splat_bench" --frames 1 --output "$WORK/memory-run.csv" "$@" \
+    > "$WORK/memory-run.log" 2>&1
+  cat "$WORK/memory-run.csv" >> "$WORK/memory.csv"
+}
+
+# The memory table of docs/memory-and-threads.md, between its markers: each case of the bench
+# at two counts, the slope between them per kernel and what is left once.
+memory() {
+  say "the memory table (the bench at two counts per case)"
+  : > "$WORK/memory.csv"
+  memory_run --scenes sphere --points 1000000,5000000 --sizes 1024 --backends cpu --mappers splat
+  memory_run --scenes sphere --points 100000,400000 --sizes 512 --backends opengl --mappers splat
+  local count
+  for count in 1 2; do
+    memory_run --scenes mri --mri-shrink "$count" --sizes 1024 --mappers splat \
+      --orderings blended,single-axis
+  done
+  for count in 1000000 4000000; do
+    memory_run --scenes gaussians --kernels "$count" --sizes 1024 --mappers splat \
+      --orderings blended
+  done
+  for count in 250000 1000000; do
+    memory_run --scenes vdb --voxels "$count" --sizes 1024 --mappers splat \
+      --orderings blended,single-axis
+  done
+  {
+    printf '| what | backend | setting | bytes per kernel | MB once | image | measured between (kernels) |\n'
+    printf '| --- | --- | --- | ---: | ---: | --- | --- |\n'
+    awk -F, -f "$ROOT/scripts/memory-table.awk" "$WORK/memory.csv"
+    printf '\n'
+    stamp
+  } > "$WORK/memory-table.md"
+  awk -v table="$WORK/memory-table.md" '
+    /^<!-- memory table:/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
+    /^<!-- end of the memory table -->/ { skip = 0 }
+    !skip' "$DOCS/memory-and-threads.md" > "$WORK/memory-and-threads.md"
+  cp "$WORK/memory-and-threads.md" "$DOCS/memory-and-threads.md"
 }
 
 # shot NAME FILE REPRESENTATION: docs/images/paraview/NAME.png, the ParaView GUI (1280x1024)
@@ -198,7 +242,8 @@ case "$WHAT" in
   images) images ;;
   screenshots) screenshots ;;
   figures) figures ;;
-  all) images && screenshots && figures ;;
-  *) say "unknown part '$WHAT' (images, screenshots, figures or all)"; exit 2 ;;
+  memory) memory ;;
+  all) images && screenshots && figures && memory ;;
+  *) say "unknown part '$WHAT' (images, screenshots, figures, memory or all)"; exit 2 ;;
 esac
 say "done: git status docs/ shows what changed"
