@@ -758,8 +758,12 @@ int RunCases(const Options& options, const std::vector<std::string>& arguments)
     }
   }
   vtksys::SystemTools::RemoveFile(caseOutput);
+  // What drew the OpenGL rows, as the cases' processes saw it.
+  vtkSmartPointer<vtkRenderWindow> probe = splatexample::MakeOffscreenWindow();
+  probe->Render();
   std::cerr << "splat_bench: " << rows << " rows; CSV written to "
-            << vtksys::SystemTools::CollapseFullPath(options.Output) << "\n";
+            << vtksys::SystemTools::CollapseFullPath(options.Output)
+            << " (OpenGL renderer: " << splatexample::OpenGLRenderer(probe) << ")\n";
   return rows > 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
 }
