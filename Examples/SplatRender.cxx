@@ -46,7 +46,6 @@
 #include <string>
 #include <vector>
 
-
 namespace
 {
 using namespace splatrender;
@@ -464,10 +463,10 @@ int RenderDemoScenes(const Options& given)
   }
   else if (vtksys::SystemTools::FileExists(splatexample::CgalData, true))
   {
-    std::cout << "armadillo: " << bunny << " is absent; using armadillo.off from " << splatexample::CgalData
-              << std::endl;
-    RenderScene(
-      window, SplatMapper(splatexample::ReadCgalArmadillo(), options), options, folder + "/armadillo.png", 180.0);
+    std::cout << "armadillo: " << bunny << " is absent; using armadillo.off from "
+              << splatexample::CgalData << std::endl;
+    RenderScene(window, SplatMapper(splatexample::ReadCgalArmadillo(), options), options,
+      folder + "/armadillo.png", 180.0);
     ++images;
   }
   else

@@ -13,10 +13,11 @@
 //   truncated at 3 sigma). The splats are a regular grid of surfels colored with the
 //   checkerboard's exact average over their grid cells (a box prefilter). The scene and its
 //   reference are in SplatCheckerboardScene.h and SplatCheckerboardReference.h, shared with TestSurfaceSplatCheckerboardError.
-// - bunny, bunny-closeup, armadillo, armadillo-closeup, sphere: meshes (two scans, each seen whole
-//   and magnified, and a sphere of --points vertices seen whole; SplatReportMeshes.h); the
-//   reference is the mesh drawn by vtkPolyDataMapper at 4x4 supersampling (4x the size, 4x4
-//   blocks averaged); the splats come from vtkSurfelGenerator.
+// - bunny, bunny-closeup, armadillo, armadillo-closeup, armadillo-points, sphere: meshes (two
+//   scans, each seen whole and magnified, the armadillo also from a point cloud scattered over
+//   it, and a sphere of --points vertices seen whole; SplatReportMeshes.h); the reference is the
+//   mesh drawn by vtkPolyDataMapper at 4x4 supersampling (4x the size, 4x4 blocks averaged); the
+//   splats come from vtkSurfelGenerator.
 // - mri, gaussians, vdb: volumes (SplatVolumeScenes.h, SplatVdbScenes.h) drawn by
 //   vtkVolumeSplatMapper in every ordering
 //   mode and with other cutoffs, and by VTK's ray casters; the reference integrates the same
@@ -29,8 +30,8 @@
 #include "SplatReportCaptures.h"
 #include "SplatReportCases.h"
 #include "SplatReportImages.h"
-#include "SplatReportMeshes.h"
 #include "SplatReportDifferentialPoints.h"
+#include "SplatReportMeshes.h"
 #include "SplatReportOutput.h"
 #include "SplatReportStability.h"
 #include "SplatReportTexture.h"
@@ -39,18 +40,14 @@
 #include "SplatVolumeScenes.h"
 #include "vtkOpenVDBReader.h"
 #include "vtkSplatBackend.h"
-#include "vtkSplatPLYReader.h"
 #include "vtkSurfaceSplatMapper.h"
-#include "vtkSurfelGenerator.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
-#include "vtkCleanPolyData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
-#include "vtkPolyDataNormals.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"

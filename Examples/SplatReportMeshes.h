@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // splat_report's mesh scenes: real scans and a finely tessellated sphere, drawn by the surfels of
 // their vertices (vtkSurfelGenerator) against the mesh itself drawn by vtkPolyDataMapper at 4x4
-// supersampling. Each scan is seen whole and magnified, and the sphere's million vertices are
+// supersampling. Each scan is seen whole and magnified, the armadillo also from a point cloud
+// scattered over its triangles (a scan without its mesh), and the sphere's million vertices are
 // seen whole, many to a pixel: the surface mapper's defaults are measured where splats are
 // smaller than a pixel, where they are several pixels wide, and in between.
 #ifndef SplatReportMeshes_h
