@@ -21,7 +21,6 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include <array>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -41,19 +40,15 @@ inline OIIO::ImageBuf ToImageBuf(vtkImageData* image, float scale)
 // The pixels of `image` whose color differs from `background` by more than 1/255 in a channel.
 inline long long CoveredPixels(const OIIO::ImageBuf& image, const double background[3])
 {
-  long long covered = 0;
-  for (OIIO::ImageBuf::ConstIterator<float> pixel(image); !pixel.done(); ++pixel)
+  const float color[3] = { static_cast<float>(background[0]), static_cast<float>(background[1]),
+    static_cast<float>(background[2]) };
+  const float eps[3] = { 1.0f / 255.0f, 1.0f / 255.0f, 1.0f / 255.0f };
+  OIIO::imagesize_t matching = 0;
+  if (!OIIO::ImageBufAlgo::color_count(image, &matching, 1, color, eps))
   {
-    for (int c = 0; c < 3; ++c)
-    {
-      if (std::abs(pixel[c] - background[c]) > 1.0 / 255.0)
-      {
-        ++covered;
-        break;
-      }
-    }
+    throw std::runtime_error("counting the background's pixels failed: " + image.geterror());
   }
-  return covered;
+  return static_cast<long long>(image.spec().image_pixels() - matching);
 }
 
 // The window rendered at `factor` times its size, reduced to its size with two pixel filters:
