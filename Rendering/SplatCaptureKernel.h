@@ -97,6 +97,8 @@ struct CaptureFootprint
   double ConicYY = 0.0;
   double Opacity = 0.0;
   double Depth = 0.0; ///< -z of the center in eye coordinates: the sort key
+  /// The largest q(d) where alpha can reach 1/255 (a little more, for float rounding).
+  double Level = 0.0;
   /// The pixels (inclusive x0, x1, y0, y1) whose centers lie in the reference's square and
   /// where alpha can reach 1/255, clipped to the viewport.
   glm::ivec4 Box{ 0 };
@@ -156,7 +158,8 @@ inline CaptureSkip MakeCaptureFootprint(const glm::dmat4& eyeToClip, const glm::
   // Within it, alpha reaches 1/255 only inside the ellipse d^T Conic d <= 2 ln(255 opacity),
   // whose bounding box is sqrt(level V'_xx) by sqrt(level V'_yy); a little wider, so that float
   // rounding at its edge stays inside.
-  const double level = 2.0 * std::log(std::min(out.Opacity, 1.0) / CaptureMinimumAlpha) * 1.001;
+  out.Level = std::log(std::min(out.Opacity, 1.0) / CaptureMinimumAlpha) * 1.001;
+  const double level = 2.0 * out.Level;
   const glm::dvec2 halfExtent(std::min(radius, std::sqrt(level * covariance[0][0]) + 1e-3),
     std::min(radius, std::sqrt(level * covariance[1][1]) + 1e-3));
   return CoveredPixels(out.Center, halfExtent, static_cast<int>(viewport.x),

@@ -14,7 +14,8 @@
  * kept kernels binned into 16 x 16 pixel tiles (a counting sort in parallel over fixed chunks),
  * each entry its kernel's depth and id in one 64-bit key; and the tiles in parallel, each list
  * sorted (by depth, ties by id, the order of a stable sort) and composited front to back, eight
- * pixels of a row at a time, until none of the tile's pixels integrates any more. The image
+ * pixels of a row at a time (those groups of eight only that a kernel's ellipse reaches and
+ * whose pixels still integrate), until none of the tile's pixels integrates any more. The image
  * does not depend on the number of threads.
  *
  * vtkVolumeSplatRasterizer, the CPU backend of vtkVolumeSplatMapper, hands its captures here in
