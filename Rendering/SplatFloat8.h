@@ -16,6 +16,7 @@
 
 #include "SplatExponential.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -105,13 +106,40 @@ struct Float8
     return Float8(less.V < than.V ? a.V : b.V);
   }
 
+  /// The lanes where `less` is below `than`, as the bits of an int (lane i in bit i).
+  SPLAT_FLOAT8 static int LessMask(const Float8& less, const Float8& than)
+  {
+    const Integers mask = less.V < than.V;
+#if defined(__SSE__)
+    // The sign bits of each half, by SSE's instruction (so also in the baseline clone).
+    Quad halves[2];
+    std::memcpy(halves, &mask, sizeof(halves));
+    return __builtin_ia32_movmskps(halves[0]) | __builtin_ia32_movmskps(halves[1]) << 4;
+#else
+    int bits = 0;
+    for (int i = 0; i < 8; ++i)
+    {
+      bits |= (mask[i] & 1) << i;
+    }
+    return bits;
+#endif
+  }
+
   /// Whether any lane of `less` is below the one of `than`.
   SPLAT_FLOAT8 static bool AnyLess(const Float8& less, const Float8& than)
   {
-    const Integers mask = less.V < than.V;
-    const Integers half = mask | __builtin_shufflevector(mask, mask, 4, 5, 6, 7, 0, 1, 2, 3);
-    const Integers quarter = half | __builtin_shufflevector(half, half, 2, 3, 0, 1, 6, 7, 4, 5);
-    return (quarter[0] | quarter[1]) != 0;
+    return LessMask(less, than) != 0;
+  }
+
+  /// -|x| per lane: the sign bit set.
+  SPLAT_FLOAT8 Float8 NegatedMagnitude() const
+  {
+    Integers bits;
+    std::memcpy(&bits, &this->V, sizeof(bits));
+    bits |= std::int32_t(0x80000000u);
+    Vector v;
+    std::memcpy(&v, &bits, sizeof(v));
+    return Float8(v);
   }
 
   /// The channels of eight consecutive four-float pixels from p, a Float8 each: pixel i in lane
@@ -255,14 +283,27 @@ struct Float8
     }
     return a;
   }
-  static bool AnyLess(const Float8& less, const Float8& than)
+  static int LessMask(const Float8& less, const Float8& than)
   {
-    bool any = false;
+    int bits = 0;
     for (int i = 0; i < 8; ++i)
     {
-      any = any || less.V[i] < than.V[i];
+      bits |= (less.V[i] < than.V[i]) << i;
     }
-    return any;
+    return bits;
+  }
+  static bool AnyLess(const Float8& less, const Float8& than)
+  {
+    return LessMask(less, than) != 0;
+  }
+  Float8 NegatedMagnitude() const
+  {
+    Float8 r;
+    for (int i = 0; i < 8; ++i)
+    {
+      r.V[i] = -std::fabs(this->V[i]);
+    }
+    return r;
   }
   static Float8 NegativeExponential(Float8 x)
   {

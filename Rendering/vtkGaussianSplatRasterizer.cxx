@@ -18,9 +18,9 @@ namespace
 // Pixels per tile side: two groups of eight columns per row.
 constexpr int TileSize = 16;
 constexpr int Lanes = 8;
-// A tile's groups of eight pixels as the bits of a word, bit 2 y + g for group g of row y: a
-// kernel's loops visit only its rows that have open groups, and the blending only the groups
-// its alphas reach.
+// A tile's groups of eight pixels as the bits of a word, bit TileSize g + y for group g of row
+// y: a kernel tests its rows of a group eight at a time, and its loops visit only the groups
+// it draws.
 constexpr int Groups = TileSize / Lanes;
 static_assert(Groups == 2 && TileSize * Groups <= 32, "two groups a row, one bit each");
 using GroupBits = std::uint32_t;
@@ -28,8 +28,7 @@ using GroupBits = std::uint32_t;
 // The bits of group g of rows ya to yb.
 SPLAT_ALWAYS_INLINE GroupBits GroupsOfRows(int ya, int yb, int g)
 {
-  const std::uint64_t rows = (std::uint64_t{ 1 } << 2 * (yb + 1)) - (std::uint64_t{ 1 } << 2 * ya);
-  return static_cast<GroupBits>(rows & 0x5555555555555555u) << g;
+  return ((GroupBits{ 2 } << yb) - (GroupBits{ 1 } << ya)) << TileSize * g;
 }
 
 // The index of the lowest set bit of a nonzero word.
@@ -160,6 +159,8 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
     std::copy_n(sceneDepths + static_cast<std::size_t>(y0 + y) * width + x0, columns,
       scene + y * TileSize);
   }
+  // The kernels behind none of the tile's scene depths skip the per-pixel depth test.
+  const float sceneNearest = *std::min_element(scene, scene + Pixels);
   const Float8 minimumAlpha(splat::CaptureMinimumAlpha);
   const Float8 maximumAlpha(splat::CaptureMaximumAlpha);
   const Float8 minimumTransmittance(splat::CaptureMinimumTransmittance);
@@ -179,70 +180,88 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
     const int yb = std::min(s.Y1 - y0, rows - 1);
     GroupBits candidates = open &
       (GroupsOfRows(ya, yb, xa / Lanes) | GroupsOfRows(ya, yb, xb / Lanes));
-    const Float8 first(static_cast<float>(xa));
-    const Float8 last(static_cast<float>(xb));
     const float offsetX = static_cast<float>(x0) + 0.5f - s.CenterX;
+    const bool occludable = sceneNearest < s.Depth;
     const Float8 depth(s.Depth);
-    // A group is drawn where the row's exponent comes below Level over its columns, at the
-    // parabola's least value there: in a real capture half the groups of its large kernels'
-    // boxes lie outside their ellipses (the donut at 800^2: 55 %).
+    // Per group: its columns' dx, its first and last columns' dx within the kernel's columns,
+    // and the peak opacity on those columns (zero on the others).
     const float halfInverseXX = 0.5f / s.ConicXX;
-    float nearestFrom[Groups]; // each group's first and last columns' dx
-    float nearestTo[Groups];
+    Float8 dx[Groups];
+    Float8 opacity[Groups];
+    Float8 nearestFrom[Groups];
+    Float8 nearestTo[Groups];
     for (int g = 0; g < Groups; ++g)
     {
+      const Float8 column = Float8::Iota() + static_cast<float>(g * Lanes);
+      dx[g] = column + offsetX;
+      opacity[g] = Float8::SelectLess(column, static_cast<float>(xa), 0.0f,
+        Float8::SelectLess(static_cast<float>(xb), column, 0.0f, s.Opacity));
       nearestFrom[g] = static_cast<float>(std::max(g * Lanes, xa)) + offsetX;
       nearestTo[g] = static_cast<float>(std::min(g * Lanes + Lanes - 1, xb)) + offsetX;
     }
-    // First the kernel's alphas over its groups row by row, independent of one another (each an
-    // exponential's chain of dependent steps, which the processor then overlaps), then their
-    // blending under the pixels.
+    // A group is drawn where the row's exponent comes below Level over its columns, at the
+    // parabola's least value there: in a real capture half the groups of its large kernels'
+    // boxes lie outside their ellipses (the donut at 800^2: 55 %). Eight rows at a time.
+    alignas(32) float crossOf[TileSize]; // per row: the exponent's dx dy and dy^2 terms
+    alignas(32) float rowTermOf[TileSize];
     GroupBits drawn = 0;
-    while (candidates != 0)
+    for (int y = 0; y < TileSize; y += Lanes)
     {
-      const int y = LowestBit(candidates) / Groups;
-      const float dy = static_cast<float>(y0 + y) + 0.5f - s.CenterY;
-      const float cross = s.ConicXY * dy;
-      const float rowTerm = s.ConicYY * dy * dy;
-      const float lowest = -cross * halfInverseXX;
+      const GroupBits eightRows = GroupsOfRows(y, y + Lanes - 1, 0);
+      if (!(candidates & (eightRows | eightRows << TileSize)))
+      {
+        continue;
+      }
+      const Float8 dy = Float8::Iota() + static_cast<float>(y0 + y) + 0.5f - s.CenterY;
+      const Float8 cross = dy * s.ConicXY;
+      const Float8 rowTerm = dy * s.ConicYY * dy;
+      cross.Store(crossOf + y);
+      rowTerm.Store(rowTermOf + y);
+      const Float8 lowest = (0.0f - cross) * halfInverseXX;
       for (int g = 0; g < Groups; ++g)
       {
-        const int bit = y * Groups + g;
-        if (!(candidates >> bit & 1u))
+        if (!(candidates & eightRows << TileSize * g))
         {
           continue;
         }
-        const float nearest = std::min(std::max(lowest, nearestFrom[g]), nearestTo[g]);
-        if (nearest * (nearest * s.ConicXX + cross) + rowTerm > s.Level)
-        {
-          continue;
-        }
-        drawn |= GroupBits{ 1 } << bit;
-        const int p = y * TileSize + g * Lanes;
-        const Float8 column = Float8::Iota() + static_cast<float>(g * Lanes);
-        const Float8 dx = column + offsetX;
-        const Float8 q = dx * (dx * s.ConicXX + cross) + rowTerm;
-        Float8 alpha = Float8::NegativeExponentialAbove(q) * s.Opacity;
-        alpha = Float8::SelectLess(alpha, maximumAlpha, alpha, maximumAlpha);
-        alpha = Float8::SelectLess(alpha, minimumAlpha, 0.0f, alpha);
-        alpha = Float8::SelectLess(column, first, 0.0f, alpha);
-        alpha = Float8::SelectLess(last, column, 0.0f, alpha);
-        Float8::SelectLess(Float8::Load(scene + p), depth, 0.0f, alpha).Store(alphas + p);
+        Float8 nearest = Float8::SelectLess(lowest, nearestFrom[g], nearestFrom[g], lowest);
+        nearest = Float8::SelectLess(nearestTo[g], nearest, nearestTo[g], nearest);
+        const Float8 least = nearest * (nearest * s.ConicXX + cross) + rowTerm;
+        const int outside = Float8::LessMask(s.Level, least);
+        drawn |= static_cast<GroupBits>(~outside & 0xff) << (TileSize * g + y);
       }
-      candidates &= ~(GroupBits{ (1u << Groups) - 1 } << y * Groups);
+    }
+    drawn &= candidates;
+    // First the kernel's alphas over its drawn groups, independent of one another (each an
+    // exponential's chain of dependent steps, which the processor then overlaps), then their
+    // blending under the pixels.
+    for (GroupBits cells = drawn; cells != 0; cells &= cells - 1)
+    {
+      const int bit = LowestBit(cells);
+      const int y = bit % TileSize;
+      const int g = bit / TileSize;
+      const int p = y * TileSize + g * Lanes;
+      const Float8 q = dx[g] * (dx[g] * s.ConicXX + crossOf[y]) + rowTermOf[y];
+      Float8 alpha = Float8::NegativeExponentialAbove(q) * opacity[g];
+      alpha = Float8::SelectLess(alpha, maximumAlpha, alpha, maximumAlpha);
+      alpha = Float8::SelectLess(alpha, minimumAlpha, 0.0f, alpha);
+      if (occludable)
+      {
+        alpha = Float8::SelectLess(Float8::Load(scene + p), depth, 0.0f, alpha);
+      }
+      alpha.Store(alphas + p);
     }
     for (; drawn != 0; drawn &= drawn - 1)
     {
       const int bit = LowestBit(drawn);
-      const int p = bit / Groups * TileSize + bit % Groups * Lanes;
+      const int p = bit % TileSize * TileSize + bit / TileSize * Lanes;
       const Float8 alpha = Float8::Load(alphas + p);
       const Float8 t = Float8::Load(transmittance + p);
       const Float8 next = t * (1.0f - alpha);
       // A pixel whose transmittance would fall below the minimum stops before this kernel
       // (stopped pixels hold their transmittance negated, so `next` is negative there).
       const Float8 weight = Float8::SelectLess(next, minimumTransmittance, 0.0f, alpha * t);
-      const Float8 stopped = Float8::SelectLess(t, 0.0f, t, 0.0f - t);
-      const Float8 kept = Float8::SelectLess(next, minimumTransmittance, stopped, next);
+      const Float8 kept = Float8::SelectLess(next, minimumTransmittance, t.NegatedMagnitude(), next);
       kept.Store(transmittance + p);
       (Float8::Load(red + p) + weight * s.Color[0]).Store(red + p);
       (Float8::Load(green + p) + weight * s.Color[1]).Store(green + p);
