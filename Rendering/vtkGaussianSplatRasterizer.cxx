@@ -31,6 +31,13 @@ SPLAT_ALWAYS_INLINE GroupBits GroupsOfRows(int ya, int yb, int g)
   return ((GroupBits{ 2 } << yb) - (GroupBits{ 1 } << ya)) << TileSize * g;
 }
 
+// Where pixel (x, y) of a tile lies in its buffers: group by group (the bits' order), so that
+// group bit b holds floats 8 b to 8 b + 7.
+SPLAT_ALWAYS_INLINE int PixelOf(int x, int y)
+{
+  return (x / Lanes * TileSize + y) * Lanes + x % Lanes;
+}
+
 // The index of the lowest set bit of a nonzero word.
 SPLAT_ALWAYS_INLINE int LowestBit(GroupBits bits)
 {
@@ -145,7 +152,7 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
   {
     for (int x = 0; x < TileSize; ++x)
     {
-      transmittance[y * TileSize + x] = x < columns && y < rows ? 1.0f : -1.0f;
+      transmittance[PixelOf(x, y)] = x < columns && y < rows ? 1.0f : -1.0f;
     }
   }
   GroupBits open = 0;
@@ -156,8 +163,11 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
   std::fill_n(scene, Pixels, std::numeric_limits<float>::infinity());
   for (int y = 0; sceneDepths && y < rows; ++y)
   {
-    std::copy_n(sceneDepths + static_cast<std::size_t>(y0 + y) * width + x0, columns,
-      scene + y * TileSize);
+    const float* row = sceneDepths + static_cast<std::size_t>(y0 + y) * width + x0;
+    for (int x = 0; x < columns; ++x)
+    {
+      scene[PixelOf(x, y)] = row[x];
+    }
   }
   // The kernels behind none of the tile's scene depths skip the per-pixel depth test.
   const float sceneNearest = *std::min_element(scene, scene + Pixels);
@@ -240,7 +250,7 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
       const int bit = LowestBit(cells);
       const int y = bit % TileSize;
       const int g = bit / TileSize;
-      const int p = y * TileSize + g * Lanes;
+      const int p = bit * Lanes;
       const Float8 q = dx[g] * (dx[g] * s.ConicXX + crossOf[y]) + rowTermOf[y];
       Float8 alpha = Float8::NegativeExponentialAbove(q) * opacity[g];
       alpha = Float8::SelectLess(alpha, maximumAlpha, alpha, maximumAlpha);
@@ -254,7 +264,7 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
     for (; drawn != 0; drawn &= drawn - 1)
     {
       const int bit = LowestBit(drawn);
-      const int p = bit % TileSize * TileSize + bit / TileSize * Lanes;
+      const int p = bit * Lanes;
       const Float8 alpha = Float8::Load(alphas + p);
       const Float8 t = Float8::Load(transmittance + p);
       const Float8 next = t * (1.0f - alpha);
@@ -277,7 +287,7 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
     glm::vec4* out = image + static_cast<std::size_t>(y0 + y) * width + x0;
     for (int x = 0; x < columns; ++x)
     {
-      const int p = y * TileSize + x;
+      const int p = PixelOf(x, y);
       out[x] = glm::vec4(red[p], green[p], blue[p], 1.0f - std::abs(transmittance[p]));
     }
   }
