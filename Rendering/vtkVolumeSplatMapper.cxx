@@ -692,14 +692,13 @@ bool vtkVolumeSplatMapper::BuildLatticeKernels(vtkPointSet* input, vtkVolumeProp
     return false;
   }
   const vtkIdType count = input->GetNumberOfPoints();
-  glm::dvec3 lowest(std::numeric_limits<double>::max());
-  glm::dvec3 highest(std::numeric_limits<double>::lowest());
-  for (vtkIdType i = 0; i < count; ++i)
+  glm::dvec3 lowest, highest;
+  for (int axis = 0; axis < 3; ++axis)
   {
-    double index[3];
-    indices->GetTuple(i, index);
-    lowest = glm::min(lowest, glm::dvec3(index[0], index[1], index[2]));
-    highest = glm::max(highest, glm::dvec3(index[0], index[1], index[2]));
+    double range[2];
+    indices->GetRange(range, axis);
+    lowest[axis] = range[0];
+    highest[axis] = range[1];
   }
   // The kernels' box of the lattice is the grid: ids over it, sorted, hold the sheets, and the
   // sheets' tables have an entry per line of it along each axis. Kernels so scattered that the
