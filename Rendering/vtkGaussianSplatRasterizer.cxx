@@ -196,8 +196,12 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
     const int xb = std::min(s.X1 - x0, columns - 1);
     const int ya = std::max(s.Y0 - y0, 0);
     const int yb = std::min(s.Y1 - y0, rows - 1);
-    GroupBits candidates = open &
+    const GroupBits candidates = open &
       (GroupsOfRows(ya, yb, xa / Lanes) | GroupsOfRows(ya, yb, xb / Lanes));
+    if (candidates == 0)
+    {
+      continue;
+    }
     const float offsetX = static_cast<float>(x0) + 0.5f - s.CenterX;
     const bool occludable = sceneNearest < s.Depth;
     const Float8 depth(s.Depth);
