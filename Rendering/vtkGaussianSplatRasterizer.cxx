@@ -283,7 +283,8 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
       // A pixel whose transmittance would fall below the minimum stops before this kernel
       // (stopped pixels hold their transmittance negated, so `next` is negative there).
       const Float8 weight = Float8::SelectLess(next, minimumTransmittance, 0.0f, alpha * t);
-      const Float8 kept = Float8::SelectLess(next, minimumTransmittance, t.NegatedMagnitude(), next);
+      const Float8 kept =
+        Float8::SelectLess(next, minimumTransmittance, t.NegatedMagnitude(), next);
       kept.Store(transmittance + p);
       (Float8::Load(red + p) + weight * s.Color[0]).Store(red + p);
       (Float8::Load(green + p) + weight * s.Color[1]).Store(green + p);
@@ -347,11 +348,12 @@ SPLAT_VECTOR_CLONES_INLINED void ProjectKernels(
 
 struct vtkGaussianSplatRasterizer::Internals
 {
-  // Per input kernel: its footprint, and why it is left out.
+  // Per input kernel: its footprint, its tiles, and why it is left out.
   std::vector<ScreenSplat> Splats;
   std::vector<TileRange> Ranges;
   std::vector<splat::CaptureSkip> Skips;
-  // Per tile, its entries (splat::DepthOrderKey of depth and id): TileOffsets[t] to TileOffsets[t + 1].
+  // Per tile, its entries (splat::DepthOrderKey of depth and id): TileOffsets[t] to
+  // TileOffsets[t + 1].
   std::vector<std::size_t> TileOffsets;
   std::vector<std::uint64_t> TileEntries;
 };
@@ -415,9 +417,9 @@ void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels&
   // 2. The tiles' lists: a counting sort of the kept kernels by tile in parallel over fixed
   // chunks of the kernels (each chunk counts its entries per tile, the counts become each
   // chunk's first place in each tile's list, each chunk fills its places), which reads the
-  // kernels' tile ranges in memory order; each tile's list is then sorted by depth where the tile is
-  // composited. Every entry holds its depth and id, so the lists do not depend on the number
-  // of threads.
+  // kernels' tile ranges in memory order; each tile's list is then sorted by depth where the
+  // tile is composited. Every entry holds its depth and id, so the lists do not depend on the
+  // number of threads.
   const int tilesX = (width + TileSize - 1) / TileSize;
   const int tilesY = (height + TileSize - 1) / TileSize;
   const vtkIdType tiles = static_cast<vtkIdType>(tilesX) * tilesY;
