@@ -14,8 +14,9 @@ Checks that
   set's surfels with Normals and SurfelRadiusScale x voxel size radii,
   the point grid's 5 points and their attribute; ProduceDenseOutput and DenseIndexBounds give
   the 4 x 3 x 2 image of the fog's values on port 1; the fog's kernels have a vertex cell each,
-  so that Show's Surface draws them and Volume Splats' opacity unit distance is the bounds'
-  diagonal over the cube root of the kernels;
+  so that Surface draws them and Volume Splats' opacity unit distance is the bounds' diagonal
+  over the cube root of the kernels; Show picks Volume Splats for the fog (unless given a
+  representation) and Surface for the level set;
 - the reader sends progress events from 0 to 1 and ParaView's progress handler (what the
   progress bar shows) relays them;
 - a truncated .vdb and a text file named .vdb give an error naming the file and empty output;
@@ -101,18 +102,31 @@ def reader_accepts(servermanager, path, name):
 
 
 # -- OpenVDB ----------------------------------------------------------------------------------
+def shown_as(simple, reader, **properties):
+    """The representation Show gives the reader's output in a new render view."""
+    view = simple.CreateRenderView()
+    display = simple.Show(reader, view, **properties)
+    representation = display.Representation
+    simple.Delete(display)
+    simple.Delete(view)
+    return representation
+
+
 def first_view_of_fog(simple, reader):
-    """Fog kernels come with one vertex cell each: Show's default Surface draws them, and Volume
-    Splats' opacity unit distance is ParaView's approximate cell length, the bounds' diagonal
-    over the cube root of the cells (without cells: the whole diagonal)."""
+    """Fog kernels come with one vertex cell each, so that Surface draws them; Show picks Volume
+    Splats for them (their Covariance array: vtkSMVolumeSplatInitializationHelper) unless told
+    otherwise, and Volume Splats' opacity unit distance is ParaView's approximate cell length,
+    the bounds' diagonal over the cube root of the cells (without cells: the whole
+    diagonal)."""
     cells = reader.GetDataInformation().GetNumberOfCells()
     check(cells == point_count(reader),
           "fog: one vertex cell per kernel (%d cells, %d kernels)" % (cells, point_count(reader)))
+    picked = shown_as(simple, reader)
+    check(picked == "Volume Splats", "fog: Show picks Volume Splats (got %s)" % picked)
+    picked = shown_as(simple, reader, Representation="Surface")
+    check(picked == "Surface", "fog: Show with Representation='Surface' keeps it (got %s)" % picked)
     view = simple.CreateRenderView()
     display = simple.Show(reader, view)
-    check(display.Representation == "Surface", "fog: Show picks Surface (got %s)"
-          % display.Representation)
-    display.SetRepresentationType("Volume Splats")
     unit = display.ScalarOpacityUnitDistance
     b = reader.GetDataInformation().GetBounds()
     expected = math.sqrt(sum((b[2 * i + 1] - b[2 * i]) ** 2 for i in range(3))) / cells ** (1 / 3)
@@ -181,6 +195,8 @@ def test_vdb(simple, servermanager, writer, tmp):
     check("Normals" in reader.PointData.keys(), "grid 'surface': Normals")
     check(close_range(array_range(reader, "Radius"), 0.2, 0.2),
           "SurfelRadiusScale 2: radius 0.2 (got %s)" % (array_range(reader, "Radius"),))
+    picked = shown_as(simple, reader)
+    check(picked == "Surface", "grid 'surface': Show picks Surface (got %s)" % picked)
 
     # The dense image on port 1.
     reader.GridName = "density"
