@@ -1,9 +1,12 @@
-# The bench's CSV (splat_bench --output) as the rows of a Markdown table: scene, mapper, backend,
-# setting, points, ms per frame, first frame ms, peer ratio, bytes per splat. Columns are found
-# by their names in the header. Used by scripts/docs.sh and scripts/gpu-check.sh report.
+# The bench's CSV (splat_bench --output) as a Markdown table, its header line included: scene,
+# mapper, backend, setting, points, ms per frame, first frame ms, peer ratio, bytes per splat.
+# Columns are found by their names in the CSV's header. Used by scripts/docs.sh and
+# scripts/gpu-check.sh report.
 #   awk -F, -f scripts/bench-table.awk bench.csv
 NR == 1 || FNR == 1 {
   for (i = 1; i <= NF; ++i) c[$i] = i
+  print "| scene | mapper | backend | setting | points | ms per frame | first frame ms | peer ratio | bytes per splat |"
+  print "|---|---|---|---|---:|---:|---:|---:|---:|"
   next
 }
 {

@@ -2,27 +2,31 @@
 # Regenerates the pictures and figures of the README and docs/ (./splat docs): nothing in them
 # is copied by hand.
 #
-#   scripts/docs.sh BUILD_DIR [images|screenshots|figures|memory|all]
+#   scripts/docs.sh BUILD_DIR [images|screenshots|figures|memory|scale|all]
 #
 # images   the README's four result images (docs/images/{bunny,mri,cloud,donut}.png) and the
 #          capture rows of the quality gallery (docs/quality.md), drawn by splat_render on the
 #          CPU; about a minute.
 # screenshots  docs/images/paraview/*.png: ParaView's GUI with the plugin loaded and a capture,
-#          a scan and a .vdb opened, dumped with xwd (Debian's x11-apps) and converted by
+#          a scan, a level set and a fog opened, and the representation drop-down opened
+#          (xdotool), dumped with xwd (Debian's x11-apps) and converted by
 #          scripts/xwd_to_png.py; about 25 s each.
 # figures  docs/performance.md and docs/report/: a subset of the bench (the peers in the same
 #          run), the error-against-time report of the surface and volume scenes (tables, plot,
 #          the gallery's surface rows from its checkerboard), the captures' and the stability
 #          tables, stamped with the machine and the commit; about 12 minutes on 2 cores.
 # memory   the memory table of docs/memory-and-threads.md: the bench at two counts per case
-#          (scripts/memory-table.awk), stamped; about 5 minutes on 2 cores.
+#          (scripts/memory-table.awk), vtkPointGaussianMapper's as the peer, stamped; about 5
+#          minutes on 2 cores.
+# scale    the scale table of docs/memory-and-threads.md: splat_bench --scale, 20 M kernels;
+#          about 15 minutes and 6 GB on 2 cores.
 #
 # Runs under the caller's X server (./splat runs it under Xvfb). Images whose input is absent
 # (the shared captures, Debian's MRI) are left as they are, with a message.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-BUILD="${1:?usage: scripts/docs.sh BUILD_DIR [images|screenshots|figures|memory|all]}"
+BUILD="${1:?usage: scripts/docs.sh BUILD_DIR [images|screenshots|figures|memory|scale|all]}"
 WHAT="${2:-all}"
 DATA="$ROOT/../shared/data"
 DOCS="$ROOT/docs"
@@ -149,13 +153,22 @@ The error of every quality setting against its run time: [report/error_vs_time.m
 were trained under: [report/captures.md](report/captures.md); the extreme and stiff cases:
 [report/stability.md](report/stability.md).
 
-| scene | mapper | backend | setting | points | ms per frame | first frame ms | peer ratio | bytes per splat |
-|---|---|---|---|---:|---:|---:|---:|---:|
 EOF
     awk -F, -f "$ROOT/scripts/bench-table.awk" "$WORK/bench.csv"
     printf '\n'
     stamp
   } > "$DOCS/performance.md"
+}
+
+# splice NAME TABLE: docs/memory-and-threads.md with the file TABLE between its markers
+# "<!-- NAME table: ..." and "<!-- end of the NAME table -->".
+splice() {
+  local page="$DOCS/memory-and-threads.md"
+  awk -v table="$2" -v start="<!-- $1 table:" -v end="<!-- end of the $1 table -->" '
+    index($0, start) == 1 { print; while ((getline line < table) > 0) print line; skip = 1; next }
+    index($0, end) == 1 { skip = 0 }
+    !skip' "$page" > "$WORK/page.md"
+  cp "$WORK/page.md" "$page"
 }
 
 # memory_run ARGS...: splat_bench ARGS, one timed frame per case, its CSV rows appended to
@@ -172,7 +185,8 @@ memory() {
   say "the memory table (the bench at two counts per case)"
   : > "$WORK/memory.csv"
   memory_run --scenes sphere --points 1000000,5000000 --sizes 1024 --backends cpu --mappers splat
-  memory_run --scenes sphere --points 100000,400000 --sizes 512 --backends opengl --mappers splat
+  memory_run --scenes sphere --points 100000,400000 --sizes 512 --backends opengl \
+    --mappers splat,pointgaussian
   local count
   for count in 1 2; do
     memory_run --scenes mri --mri-shrink "$count" --sizes 1024 --mappers splat \
@@ -195,17 +209,28 @@ memory() {
     printf '\n'
     stamp
   } > "$WORK/memory-table.md"
-  awk -v table="$WORK/memory-table.md" '
-    /^<!-- memory table:/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
-    /^<!-- end of the memory table -->/ { skip = 0 }
-    !skip' "$DOCS/memory-and-threads.md" > "$WORK/memory-and-threads.md"
-  cp "$WORK/memory-and-threads.md" "$DOCS/memory-and-threads.md"
+  splice memory "$WORK/memory-table.md"
 }
 
-# shot NAME FILE REPRESENTATION: docs/images/paraview/NAME.png, the ParaView GUI (1280x1024)
-# with FILE opened and shown as REPRESENTATION, the plugin loaded.
+# The scale table of docs/memory-and-threads.md: splat_bench --scale (20 M surfels and 20 M
+# Gaussians at 1024^2 on the CPU).
+scale() {
+  say "the scale table (20 M kernels; about 15 minutes and 6 GB)"
+  "$BUILD/bin/splat_bench" --scale --output "$WORK/scale.csv" > "$WORK/scale.log" 2>&1
+  {
+    awk -F, -f "$ROOT/scripts/bench-table.awk" "$WORK/scale.csv"
+    printf '\n'
+    stamp
+  } > "$WORK/scale-table.md"
+  splice scale "$WORK/scale-table.md"
+}
+
+# shot NAME FILE REPRESENTATION [X Y]: docs/images/paraview/NAME.png, the ParaView GUI
+# (1280x1024, fresh settings) with FILE opened and shown as REPRESENTATION (empty: as Show
+# picks), the plugin loaded;
+# with X Y, after a click there (xdotool): a pixel of the GUI as ParaView 5.11 lays it out.
 shot() {
-  local name="$1" file="$2" representation="$3"
+  local name="$1" file="$2" representation="$3" x="${4:-}" y="${5:-}"
   if [ ! -e "$file" ]; then
     say "$file is absent: $name.png left as it is"
     return 0
@@ -213,12 +238,16 @@ shot() {
   mkdir -p "$DOCS/images/paraview"
   # -geometry: the main window at the screen's size (its OpenGL view is also dumped correctly
   # then, where a smaller window's comes out striped).
-  PYTHONPATH="$PARAVIEW_PYTHONPATH" SPLAT_SHOT_FILE="$file" \
-    SPLAT_SHOT_REPRESENTATION="$representation" paraview -geometry 1280x1024+0+0 --dr --plugins=SplatPlugin \
-    "--plugin-search-paths=$(dirname "$PLUGIN")" \
+  XDG_CONFIG_HOME="$WORK/config" PYTHONPATH="$PARAVIEW_PYTHONPATH" SPLAT_SHOT_FILE="$file" \
+    SPLAT_SHOT_REPRESENTATION="$representation" paraview -geometry 1280x1024+0+0 --dr \
+    --plugins=SplatPlugin "--plugin-search-paths=$(dirname "$PLUGIN")" \
     "--script=$ROOT/scripts/docs_paraview_scene.py" > "$WORK/$name.log" 2>&1 &
   local pid=$!
   sleep "${SPLAT_SHOT_SECONDS:-25}"
+  if [ -n "$x" ]; then
+    xdotool mousemove "$x" "$y" click 1
+    sleep 2
+  fi
   xwd -root -silent > "$WORK/$name.xwd"
   kill "$pid"
   wait "$pid" 2>/dev/null || true
@@ -228,8 +257,10 @@ shot() {
 
 screenshots() {
   PLUGIN="$(echo "$ROOT"/build/paraview/lib/paraview-*/plugins/SplatPlugin/SplatPlugin.so)"
-  if ! command -v xwd > /dev/null || ! command -v paraview > /dev/null || [ ! -f "$PLUGIN" ]; then
-    say "the ParaView screenshots need xwd (x11-apps), paraview and the plugin (./splat build paraview): left as they are"
+  if ! command -v xwd > /dev/null || ! command -v xdotool > /dev/null \
+    || ! command -v paraview > /dev/null || [ ! -f "$PLUGIN" ]; then
+    say "the ParaView screenshots need xwd (x11-apps), xdotool, paraview and the plugin" \
+      "(./splat build paraview): left as they are"
     return 0
   fi
   # ParaView's Python, unpacked by the set-up (docs/setup.md).
@@ -238,6 +269,11 @@ screenshots() {
   shot volume-splats "$DATA/donut_fused.ply" "Volume Splats"
   shot surface-splats "$DATA/bunny.ply" "Surface Splats"
   shot openvdb "$DATA/sphere.vdb" "Surface Splats"
+  # A fog as Apply shows it: the smoke plume of splat_render's demo scenes.
+  "$RENDER" --backend cpu --size 64x64 --output-dir "$WORK/fog" > "$WORK/fog.log"
+  shot fog "$WORK/fog/smoke.vdb" ""
+  # The representation drop-down of the toolbar, opened.
+  shot representations "$DATA/bunny.ply" "Surface Splats" 578 80
 }
 
 case "$WHAT" in
@@ -245,7 +281,8 @@ case "$WHAT" in
   screenshots) screenshots ;;
   figures) figures ;;
   memory) memory ;;
-  all) images && screenshots && figures && memory ;;
-  *) say "unknown part '$WHAT' (images, screenshots, figures, memory or all)"; exit 2 ;;
+  scale) scale ;;
+  all) images && screenshots && figures && memory && scale ;;
+  *) say "unknown part '$WHAT' (images, screenshots, figures, memory, scale or all)"; exit 2 ;;
 esac
 say "done: git status docs/ shows what changed"

@@ -379,8 +379,6 @@ EOF
         "$(sed -n 's/^commit //p' "$source/summary.txt")" \
         "$(grep -m 1 'MiB$' "$source/summary.txt" || echo 'an unnamed GPU')" \
         "$(sed -n 's/^ *backend: *//p' "$source/summary.txt" | head -n 1)"
-      printf '| scene | mapper | backend | setting | points | ms per frame | first frame ms | peer ratio | bytes per splat |\n'
-      printf '|---|---|---|---|---:|---:|---:|---:|---:|\n'
       awk -F, -f "$ROOT/scripts/bench-table.awk" "$source/$name.csv"
     done
   } >"$page"

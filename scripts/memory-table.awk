@@ -10,13 +10,14 @@ FNR == 1 {
 }
 $c["scene"] == "scene" { next } # the header of a later run
 {
-  key = $c["scene"] SUBSEP $c["backend"] SUBSEP $c["setting"] SUBSEP $c["width"]
+  key = $c["scene"] SUBSEP $c["backend"] SUBSEP $c["setting"] SUBSEP $c["width"] SUBSEP $c["mapper"]
   if (!(key in count)) order[++cases] = key
   n = ++count[key]
   points[key, n] = $c["points"]
   bytes[key, n] = $c["bytes_per_splat"] * $c["points"]
 }
-function what(scene) {
+function what(scene, mapper) {
+  if (mapper == "vtkPointGaussianMapper") return "the peer, vtkPointGaussianMapper (sphere points)"
   if (scene == "sphere") return "surface splats (sphere surfels)"
   if (scene == "mri") return "volume, image data (the MRI; per voxel drawn)"
   if (scene == "gaussians") return "volume, point Gaussians"
@@ -32,7 +33,7 @@ END {
     slope = (bytes[key, hi] - bytes[key, lo]) / (points[key, hi] - points[key, lo])
     once = (bytes[key, lo] - slope * points[key, lo]) / 1048576
     split(key, part, SUBSEP)
-    printf "| %s | %s | %s | %.0f | %.0f | %s^2 | %s and %s |\n", what(part[1]), part[2],
+    printf "| %s | %s | %s | %.0f | %.0f | %s^2 | %s and %s |\n", what(part[1], part[5]), part[2],
       part[3], slope, once, part[4], points[key, lo], points[key, hi]
   }
 }

@@ -6,6 +6,7 @@
 #       vtk       what the VTK modules, the examples and the Python package need (./splat demo,
 #                 bench, report, python, build vtk)
 #       paraview  vtk, plus ParaView 5.11 for the plugin (./splat build paraview|all)
+#       docs      paraview, plus what ./splat docs screenshots runs: xwd (x11-apps) and xdotool
 #       gpu-check vtk, plus what scripts/gpu-check.sh needs to pack (a Mesa build: meson, the X and
 #                 GL headers) and to verify (debootstrap) its archive
 #       test      paraview, plus debootstrap (the Debian 13 test leg, scripts/debian-root.sh) and
@@ -56,6 +57,7 @@ if [ "$(. /etc/os-release && echo "${VERSION_CODENAME:-}")" = bookworm ]; then
 else
   PARAVIEW_PACKAGES+=(qt6-base-dev qt6-5compat-dev qt6-tools-dev qt6-svg-dev)
 fi
+DOCS_PACKAGES=(x11-apps xdotool)
 TEST_PACKAGES=(
   # the Debian 13 root of the second test leg (scripts/debian-root.sh)
   debootstrap
@@ -86,9 +88,10 @@ quietly() {
 case "$PROFILE" in
   vtk) packages=("${VTK_PACKAGES[@]}") ;;
   paraview) packages=("${VTK_PACKAGES[@]}" "${PARAVIEW_PACKAGES[@]}") ;;
+  docs) packages=("${VTK_PACKAGES[@]}" "${PARAVIEW_PACKAGES[@]}" "${DOCS_PACKAGES[@]}") ;;
   test) packages=("${VTK_PACKAGES[@]}" "${PARAVIEW_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
   gpu-check) packages=("${VTK_PACKAGES[@]}" "${GPU_CHECK_PACKAGES[@]}") ;;
-  *) die "unknown profile '$PROFILE' (vtk, paraview, gpu-check or test)" ;;
+  *) die "unknown profile '$PROFILE' (vtk, paraview, docs, gpu-check or test)" ;;
 esac
 
 SUDO=()
@@ -265,7 +268,7 @@ if [ "$(stamp "$PV_CMAKE_DIR")" != "$pv_cmake_stamp" ]; then
   printf '%s\n' "$pv_cmake_stamp" > "$PV_CMAKE_DIR/.version"
 fi
 
-[ "$PROFILE" = paraview ] && exit 0
+case "$PROFILE" in paraview|docs) exit 0 ;; esac
 
 # --- The converters of the capture format tests -------------------------------------------------
 TOOLS_DIR="$DEPS_DIR/capture-tools"

@@ -1,5 +1,5 @@
-"""The README and docs/ as a newcomer meets them: every relative link and image resolves, and the
-README's Python quick starts run as written.
+"""The README and docs/ as a newcomer meets them: every relative link and image resolves, the
+README's Python quick starts run as written and its C++ quick start compiles.
 
   check_docs.py links ROOT
       every [text](target) and ![alt](target) of ROOT/README.md and ROOT/docs/*.md that is not a
@@ -9,6 +9,10 @@ README's Python quick starts run as written.
       pvpython), in a scratch folder, after replacing each FROM by TO (a plugin's path or a file
       name that depends on the build); exits 125 (skipped) when a TO that is an absolute path
       does not exist.
+  check_docs.py cxx ROOT HEADING OUTPUT
+      writes the README's ```cpp blocks under the heading HEADING to OUTPUT as one translation
+      unit: their #include lines, the header of each other VTK class they name (the blocks leave
+      the usual ones out), and their statements as the body of one function.
 """
 import os
 import re
@@ -45,15 +49,33 @@ def check_links(root):
     return 1 if broken or count == 0 else 0
 
 
-def python_block(root, heading):
+def blocks(root, heading, language):
     text = open(os.path.join(root, "README.md"), encoding="utf-8").read()
     section = text.split("\n## " + heading + "\n", 1)
     if len(section) != 2:
         sys.exit("no heading '## %s' in the README" % heading)
-    block = re.search(r"```python\n(.*?)```", section[1].split("\n## ", 1)[0], re.S)
-    if not block:
-        sys.exit("no python block under '## %s'" % heading)
-    return block.group(1)
+    found = re.findall(r"```" + language + r"\n(.*?)```", section[1].split("\n## ", 1)[0], re.S)
+    if not found:
+        sys.exit("no %s block under '## %s'" % (language, heading))
+    return found
+
+
+def python_block(root, heading):
+    return blocks(root, heading, "python")[0]
+
+
+def write_cxx(root, heading, output):
+    code = "".join(blocks(root, heading, "cpp"))
+    includes = re.findall(r"^#include .*$", code, re.M)
+    statements = re.sub(r"^#include .*\n", "", code, flags=re.M).lstrip("\n")
+    named = sorted(set(re.findall(r"\bvtk[A-Z]\w*", statements)))
+    included = set(re.findall(r'"(vtk\w+)\.h"', code))
+    with open(output, "w", encoding="utf-8") as f:
+        f.write("// The README's '## %s' blocks (Testing/Tools/check_docs.py cxx).\n" % heading)
+        f.write("\n".join(includes + ['#include "%s.h"' % name for name in named
+                                      if name not in included]))
+        f.write("\n\nvoid ReadmeQuickStart()\n{\n%s}\n" % statements)
+    return 0
 
 
 def run_block(root, heading, interpreter, replacements):
@@ -79,6 +101,8 @@ def main(argv):
         return check_links(argv[2])
     if len(argv) >= 5 and argv[1] == "run":
         return run_block(argv[2], argv[3], argv[4], argv[5:])
+    if len(argv) == 5 and argv[1] == "cxx":
+        return write_cxx(argv[2], argv[3], argv[4])
     sys.exit(__doc__)
 
 
