@@ -13,12 +13,15 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
+#include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPerlinNoise.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkVolumeProperty.h"
+
+#include "SplatFogOpacity.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
@@ -145,35 +148,18 @@ inline vtkIdType WriteSmokeVdb(const std::string& path, vtkIdType activeVoxels)
 }
 
 /**
- * The first view of a fog grid read by vtkOpenVDBReader (its values as scalars, its
- * "SampleVolume" array): a fog's values are densities, so
- * - extinction is linear in the density from zero (a density of 0 is clear air, not the low end
- *   of a value range to threshold away: the thin fringe of smoke stays visible);
- * - the emission is white, the color of lit water droplets and smoke alike, and needs no range;
- * - the scale makes a ray through a compact cloud of the grid's active volume V at the grid's
- *   mean positive density m have an optical depth of 2 (a transmittance of e^-2, 14%): the
- *   extinction per unit density is 2 / (m cbrt(V)). Dense cores come out nearly opaque, the
- *   bulk translucent, the shape readable from any side, whatever units the densities have.
- * The opacity function is given per ScalarOpacityUnitDistance cbrt(V) / 100, sampled at 33
- * densities from 0 to the largest (alpha = 1 - exp(-tau u) at each, so that the mapper's
- * extinction is linear between them).
+ * The first view of a fog grid read by vtkOpenVDBReader: white emission and the opacity of
+ * SplatFogOpacity.h, from the reader's "DensityStatistics" (clear without them).
  */
 inline vtkSmartPointer<vtkVolumeProperty> FogProperty(vtkDataSet* kernels)
 {
-  vtkDataArray* densities = kernels->GetPointData()->GetScalars();
-  vtkDataArray* volumes = kernels->GetPointData()->GetArray("SampleVolume");
-  double sum = 0.0, largest = 0.0, volume = 0.0;
-  vtkIdType count = 0;
-  for (vtkIdType i = 0; densities && volumes && i < kernels->GetNumberOfPoints(); ++i)
+  splat::FogStatistics statistics;
+  if (vtkDataArray* array = kernels->GetFieldData()->GetArray("DensityStatistics"))
   {
-    const double d = densities->GetComponent(i, 0);
-    const double v = volumes->GetComponent(i, 0);
-    if (std::isfinite(d) && std::isfinite(v) && d > 0.0)
+    if (array->GetNumberOfComponents() == 3 && array->GetNumberOfTuples() == 1)
     {
-      sum += d;
-      largest = std::max(largest, d);
-      volume += v;
-      ++count;
+      statistics = { array->GetComponent(0, 0), array->GetComponent(0, 1),
+        array->GetComponent(0, 2) };
     }
   }
   auto property = vtkSmartPointer<vtkVolumeProperty>::New();
@@ -181,19 +167,16 @@ inline vtkSmartPointer<vtkVolumeProperty> FogProperty(vtkDataSet* kernels)
   color->AddRGBPoint(0.0, 1.0, 1.0, 1.0);
   property->SetColor(color);
   vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0.0, 0.0);
-  if (count > 0 && volume > 0.0)
+  splat::FogOpacity fog;
+  if (splat::MakeFogOpacity(statistics, fog))
   {
-    const double size = std::cbrt(volume);
-    const double perDensity = 2.0 / (sum / count * size);
-    const double unit = size / 100.0;
-    for (int i = 1; i <= 32; ++i)
+    for (int i = 1; i < splat::FogOpacity::Samples; ++i)
     {
-      const double d = largest * i / 32.0;
-      opacity->AddPoint(d, 1.0 - std::exp(-perDensity * d * unit));
+      opacity->AddPoint(fog.Density[i], fog.Alpha[i]);
     }
-    property->SetScalarOpacityUnitDistance(unit);
+    property->SetScalarOpacityUnitDistance(fog.UnitDistance);
   }
+  opacity->AddPoint(0.0, 0.0);
   property->SetScalarOpacity(opacity);
   property->SetInterpolationTypeToLinear();
   return property;

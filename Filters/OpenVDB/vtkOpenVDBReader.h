@@ -28,6 +28,10 @@
  *   "VoxelIndex" (each voxel's index coordinates) and a 16-component field-data array
  *   "IndexToWorld" (the matrix of GetGridIndexToWorld). vtkVolumeSplatMapper then draws them
  *   as it draws image data, sheet by sheet, without the grid's dense memory.
+ *   When no value is negative (a fog's densities), a 3-component field-data array
+ *   "DensityStatistics" holds the mean and the largest of the positive values and the volume
+ *   of their kernels: what a first view's opacity needs (SplatFogOpacity.h; splat_render and
+ *   ParaView's Volume Splats use it).
  * - level sets (class GRID_LEVEL_SET): surfels for vtkSurfaceSplatMapper. Every active voxel
  *   whose sign differs from one of its six neighbors (math::GradStencil::zeroCrossing) gives a
  *   point projected onto the zero crossing by a Newton step x - phi grad(phi) / |grad(phi)|^2,

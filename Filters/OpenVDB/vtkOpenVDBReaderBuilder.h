@@ -22,6 +22,7 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -156,6 +157,43 @@ struct ValueArrays
     }
   }
 };
+
+/**
+ * The field-data array "DensityStatistics" of kernels whose point scalars are densities (none
+ * negative): the mean and the largest positive density and the volume ("SampleVolume") of the
+ * kernels that hold them (splat::FogStatistics). Nothing when a scalar is negative.
+ */
+inline void AddDensityStatistics(vtkPolyData* output)
+{
+  vtkDataArray* densities = output->GetPointData()->GetScalars();
+  vtkDataArray* volumes = output->GetPointData()->GetArray("SampleVolume");
+  if (!densities || !volumes || densities->GetRange(0)[0] < 0.0)
+  {
+    return;
+  }
+  double sum = 0.0, largest = 0.0, volume = 0.0;
+  vtkIdType count = 0;
+  for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
+  {
+    const double d = densities->GetComponent(i, 0);
+    if (d > 0.0)
+    {
+      sum += d;
+      largest = std::max(largest, d);
+      volume += volumes->GetComponent(i, 0);
+      ++count;
+    }
+  }
+  vtkNew<vtkDoubleArray> statistics;
+  statistics->SetName("DensityStatistics");
+  statistics->SetNumberOfComponents(3);
+  statistics->SetComponentName(0, "Mean");
+  statistics->SetComponentName(1, "Largest");
+  statistics->SetComponentName(2, "Volume");
+  const double tuple[3] = { count > 0 ? sum / count : 0.0, largest, volume };
+  statistics->InsertNextTuple(tuple);
+  output->GetFieldData()->AddArray(statistics);
+}
 
 /// One vertex cell per point, in 32-bit ids where they fit (8 bytes a point).
 template <typename ArrayT>
@@ -363,6 +401,7 @@ struct vtkOpenVDBReaderBuilder
     output->GetPointData()->AddArray(covariances);
     output->GetPointData()->AddArray(volumes);
     values.AddTo(output->GetPointData());
+    splatvdb::AddDensityStatistics(output);
     if (lattice)
     {
       output->GetPointData()->AddArray(indices);

@@ -288,6 +288,39 @@ TEST(OpenVDBReader, LeafTilesBecomeVoxelsOfTheLattice)
 }
 
 //------------------------------------------------------------------------------
+TEST(OpenVDBReader, DensityStatisticsOnlyForDensities)
+{
+  // Densities 0 (clear air, left out of the statistics), 1, 2 and 6 in voxels of volume |det A|.
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("density");
+  grid->setTransform(AffineTransform());
+  auto accessor = grid->getAccessor();
+  const float values[4] = { 0.0f, 1.0f, 2.0f, 6.0f };
+  for (int i = 0; i < 4; ++i)
+  {
+    accessor.setValue(openvdb::Coord(3 * i, i, -i), values[i]);
+  }
+  const std::string path = TempPath("densities.vdb");
+  Write(path, { grid });
+  Read read(path);
+  vtkDataArray* statistics = read.Output()->GetFieldData()->GetArray("DensityStatistics");
+  ASSERT_NE(statistics, nullptr);
+  ASSERT_EQ(statistics->GetNumberOfComponents(), 3);
+  ASSERT_EQ(statistics->GetNumberOfTuples(), 1);
+  const double voxel = std::abs(grid->transform().baseMap()->determinant());
+  EXPECT_NEAR(statistics->GetComponent(0, 0), 3.0, 1e-12);
+  EXPECT_NEAR(statistics->GetComponent(0, 1), 6.0, 1e-12);
+  EXPECT_NEAR(statistics->GetComponent(0, 2), 3.0 * voxel, 1e-6 * voxel);
+  // A negative value: not densities, no statistics.
+  accessor.setValue(openvdb::Coord(20, 0, 0), -1.0f);
+  const std::string signedPath = TempPath("signed.vdb");
+  Write(signedPath, { grid });
+  Read signedRead(signedPath);
+  EXPECT_EQ(signedRead.Output()->GetNumberOfPoints(), 5);
+  EXPECT_EQ(signedRead.Output()->GetFieldData()->GetArray("DensityStatistics"), nullptr);
+}
+
+//------------------------------------------------------------------------------
 TEST(OpenVDBReader, VectorGridMagnitudeAndVectors)
 {
   auto grid = openvdb::Vec3dGrid::create();

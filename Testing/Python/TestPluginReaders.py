@@ -14,9 +14,9 @@ Checks that
   set's surfels with Normals and SurfelRadiusScale x voxel size radii,
   the point grid's 5 points and their attribute; ProduceDenseOutput and DenseIndexBounds give
   the 4 x 3 x 2 image of the fog's values on port 1; the fog's kernels have a vertex cell each,
-  so that Surface draws them and Volume Splats' opacity unit distance is the bounds' diagonal
-  over the cube root of the kernels; Show picks Volume Splats for the fog (unless given a
-  representation) and Surface for the level set;
+  so that Surface draws them; Show picks Volume Splats for the fog (unless given a
+  representation), with the white color map and the opacity of splat_render's first view of a
+  fog from the reader's DensityStatistics, and Surface for the level set;
 - the reader sends progress events from 0 to 1 and ParaView's progress handler (what the
   progress bar shows) relays them;
 - a truncated .vdb and a text file named .vdb give an error naming the file and empty output;
@@ -112,26 +112,59 @@ def shown_as(simple, reader, **properties):
     return representation
 
 
+def fog_statistics(reader):
+    """The mean and largest positive density and their kernels' volume, from the data."""
+    data = reader.GetClientSideObject().GetOutputDataObject(0)
+    densities = data.GetPointData().GetScalars()
+    volumes = data.GetPointData().GetArray("SampleVolume")
+    positive = [(densities.GetValue(i), volumes.GetValue(i))
+                for i in range(data.GetNumberOfPoints()) if densities.GetValue(i) > 0]
+    return (sum(d for d, _ in positive) / len(positive), max(d for d, _ in positive),
+            sum(v for _, v in positive))
+
+
 def first_view_of_fog(simple, reader):
     """Fog kernels come with one vertex cell each, so that Surface draws them; Show picks Volume
     Splats for them (their Covariance array: vtkSMVolumeSplatInitializationHelper) unless told
-    otherwise, and Volume Splats' opacity unit distance is ParaView's approximate cell length,
-    the bounds' diagonal over the cube root of the cells (without cells: the whole
-    diagonal)."""
+    otherwise, with splat_render's first view of a fog (SplatFogOpacity.h): from the reader's
+    DensityStatistics, a white color map over 0 to the largest density that is never rescaled,
+    alpha 1 - exp(-tau u) with tau = 2 d / (mean cbrt(V)) at densities d from 0, and the unit
+    distance u = cbrt(V) / 100."""
     cells = reader.GetDataInformation().GetNumberOfCells()
     check(cells == point_count(reader),
           "fog: one vertex cell per kernel (%d cells, %d kernels)" % (cells, point_count(reader)))
-    picked = shown_as(simple, reader)
-    check(picked == "Volume Splats", "fog: Show picks Volume Splats (got %s)" % picked)
     picked = shown_as(simple, reader, Representation="Surface")
     check(picked == "Surface", "fog: Show with Representation='Surface' keeps it (got %s)" % picked)
+    mean, largest, volume = fog_statistics(reader)
+    given = reader.GetClientSideObject().GetOutputDataObject(0).GetFieldData().GetArray(
+        "DensityStatistics")
+    check(given is not None and all(close(a, b) for a, b in zip(given.GetTuple(0),
+                                                                (mean, largest, volume))),
+          "fog: the reader's DensityStatistics are (%g, %g, %g) (got %s)"
+          % (mean, largest, volume, given.GetTuple(0) if given else None))
     view = simple.CreateRenderView()
     display = simple.Show(reader, view)
-    unit = display.ScalarOpacityUnitDistance
-    b = reader.GetDataInformation().GetBounds()
-    expected = math.sqrt(sum((b[2 * i + 1] - b[2 * i]) ** 2 for i in range(3))) / cells ** (1 / 3)
-    check(close(unit, expected, 1e-3), "fog: Volume Splats' opacity unit distance %g, the "
-          "diagonal over the cube root of the kernels (got %g)" % (expected, unit))
+    check(display.Representation == "Volume Splats",
+          "fog: Show picks Volume Splats (got %s)" % display.Representation)
+    check(list(display.ColorArrayName) == ["POINTS", "density"],
+          "fog: colored by its densities (got %s)" % list(display.ColorArrayName))
+    unit = volume ** (1 / 3) / 100
+    check(close(display.ScalarOpacityUnitDistance, unit, 1e-6),
+          "fog: opacity unit distance cbrt(V) / 100 = %g (got %g)"
+          % (unit, display.ScalarOpacityUnitDistance))
+    lut = simple.GetColorTransferFunction("density")
+    rgb = list(lut.RGBPoints)
+    check(rgb[0::4] == [0.0, largest] and set(rgb[1::4] + rgb[2::4] + rgb[3::4]) == {1.0},
+          "fog: a white color map over 0..%g (got %s)" % (largest, rgb))
+    check(lut.AutomaticRescaleRangeMode == "Never",
+          "fog: the color map is never rescaled (got %s)" % lut.AutomaticRescaleRangeMode)
+    points = list(simple.GetOpacityTransferFunction("density").Points)
+    expected = [(largest * i / 32, 1 - math.exp(-2 * largest * i / 32 / (mean * 100)))
+                for i in range(33)]
+    got = list(zip(points[0::4], points[1::4]))
+    check(len(got) == 33 and all(close(x, ex) and close(a, ea) for (x, a), (ex, ea)
+                                 in zip(got, expected)),
+          "fog: alpha 1 - exp(-2 d / (100 mean)) at 33 densities 0..%g (got %s)" % (largest, got))
     simple.Delete(display)
     simple.Delete(view)
 
