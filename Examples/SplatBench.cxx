@@ -154,7 +154,7 @@ Options (a value follows as --name VALUE or --name=VALUE; lists are comma-separa
                        shrunk by 2, 256x256, 2 frames
   --scale              the scale run: 20 M sphere points and 20 M Gaussians at 1024x1024,
                        vtkSurfaceSplatMapper and vtkVolumeSplatMapper on the CPU, 3 frames
-                       (about 6 GB and 15 minutes on 2 cores)
+                       (about 6 GB and 6 minutes on 2 cores)
   --output FILE        CSV file, also written to stdout (default output/bench/bench.csv)
   --image-dir DIR      also write each case's last frame as a PNG into DIR
   --gpu-timings        print the GPU time of each render pass of a case's last timed frame to

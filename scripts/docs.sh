@@ -19,7 +19,7 @@
 #          (scripts/memory-table.awk), vtkPointGaussianMapper's as the peer, stamped; about 5
 #          minutes on 2 cores.
 # scale    the scale table of docs/memory-and-threads.md: splat_bench --scale, 20 M kernels;
-#          about 15 minutes and 6 GB on 2 cores.
+#          about 6 minutes and 6 GB on 2 cores.
 #
 # Runs under the caller's X server (./splat runs it under Xvfb). Images whose input is absent
 # (the shared captures, Debian's MRI) are left as they are, with a message.
@@ -215,7 +215,7 @@ memory() {
 # The scale table of docs/memory-and-threads.md: splat_bench --scale (20 M surfels and 20 M
 # Gaussians at 1024^2 on the CPU).
 scale() {
-  say "the scale table (20 M kernels; about 15 minutes and 6 GB)"
+  say "the scale table (20 M kernels; about 6 minutes and 6 GB)"
   "$BUILD/bin/splat_bench" --scale --output "$WORK/scale.csv" > "$WORK/scale.log" 2>&1
   {
     awk -F, -f "$ROOT/scripts/bench-table.awk" "$WORK/scale.csv"
