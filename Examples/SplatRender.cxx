@@ -410,10 +410,10 @@ vtkSmartPointer<vtkPolyData> ReadVdbGrid(const std::string& path, const Options&
 }
 
 // An OpenVDB file's grid, drawn by what the reader made of it: Gaussian kernels (fog and other
-// scalar or vector grids) through FogProperty where the values are densities (none negative),
-// otherwise RangeProperty with a unit distance of the smallest sample's width, framed on all
-// the active voxels (a grid has no stray samples to leave out); surfels (level sets) with their
-// own radii; or a point cloud (point grids).
+// scalar or vector grids) through FogProperty where the values are densities (none negative:
+// the reader's "DensityStatistics"), otherwise RangeProperty with a unit distance of the
+// smallest sample's width, framed on all the active voxels (a grid has no stray samples to
+// leave out); surfels (level sets) with their own radii; or a point cloud (point grids).
 int RenderVdbFile(const Options& options, const std::string& png)
 {
   vtkSmartPointer<vtkPolyData> data = ReadVdbGrid(options.Input, options);
@@ -423,7 +423,7 @@ int RenderVdbFile(const Options& options, const std::string& png)
     std::cout << "grid '" << (arrays->GetScalars() ? arrays->GetScalars()->GetName() : "")
               << "': " << data->GetNumberOfPoints()
               << " Gaussian kernels, drawn by vtkVolumeSplatMapper" << std::endl;
-    const bool densities = arrays->GetScalars()->GetFiniteRange(0)[0] >= 0.0;
+    const bool densities = data->GetFieldData()->GetArray("DensityStatistics") != nullptr;
     RenderVolumeScene(MakeWindow(options), data,
       densities ? splatexample::FogProperty(data)
                 : RangeProperty(arrays->GetScalars(), std::cbrt(volumes->GetRange(0)[0])),

@@ -495,7 +495,6 @@ void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels&
           static_cast<int>(tile / tilesX) * TileSize, width, height, sceneDepths, image.data());
       }
     });
-
 }
 
 //------------------------------------------------------------------------------

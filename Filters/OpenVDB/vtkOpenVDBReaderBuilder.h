@@ -167,7 +167,7 @@ inline void AddDensityStatistics(vtkPolyData* output)
 {
   vtkDataArray* densities = output->GetPointData()->GetScalars();
   vtkDataArray* volumes = output->GetPointData()->GetArray("SampleVolume");
-  if (!densities || !volumes || densities->GetRange(0)[0] < 0.0)
+  if (!densities || !volumes)
   {
     return;
   }
@@ -176,6 +176,10 @@ inline void AddDensityStatistics(vtkPolyData* output)
   for (vtkIdType i = 0; i < output->GetNumberOfPoints(); ++i)
   {
     const double d = densities->GetComponent(i, 0);
+    if (d < 0.0)
+    {
+      return;
+    }
     if (d > 0.0)
     {
       sum += d;
