@@ -21,12 +21,15 @@
  * Pixel (i, j) has its center at (i + 0.5, j + 0.5), as in SplatVolumeKernel.h; the reference's
  * integer pixel coordinates are these minus one half.
  *
- * VTK-free (GLM only): the CPU rasterizers and the GLSL share it.
+ * The CPU computes the footprints eight kernels at a time, in float as the reference does
+ * (MakeCaptureFootprints); the GLSL mirrors the same steps per kernel. VTK-free (GLM and
+ * SplatFloat8.h only).
  */
 #ifndef SplatCaptureKernel_h
 #define SplatCaptureKernel_h
 
-#include "SplatVolumeKernel.h" // For splat::VolumeProjection
+#include "SplatFloat8.h"       // For splat::Float8
+#include "SplatVolumeKernel.h" // For splat::NearPlaneDistance
 
 #include <glm/glm.hpp>
 
@@ -84,26 +87,6 @@ inline double PeakOpacityCompensation(FootprintFilter filter, const glm::dmat2& 
   return std::sqrt(std::max(glm::determinant(covariance), 0.0) / filtered);
 }
 
-/**
- * A capture kernel on the screen: alpha(x) = min(0.99, Opacity exp(-q(x - Center))) with
- * q(d) = ConicXX d.x^2 + ConicXY d.x d.y + ConicYY d.y^2 (half the conic's quadratic form),
- * nonzero only inside Box.
- */
-struct CaptureFootprint
-{
-  glm::dvec2 Center{ 0.0 };
-  double ConicXX = 0.0;
-  double ConicXY = 0.0;
-  double ConicYY = 0.0;
-  double Opacity = 0.0;
-  double Depth = 0.0; ///< -z of the center in eye coordinates: the sort key
-  /// The largest q(d) where alpha can reach 1/255 (a little more, for float rounding).
-  double Level = 0.0;
-  /// The pixels (inclusive x0, x1, y0, y1) whose centers lie in the reference's square and
-  /// where alpha can reach 1/255, clipped to the viewport.
-  glm::ivec4 Box{ 0 };
-};
-
 /// Why a capture kernel is not drawn.
 enum class CaptureSkip
 {
@@ -113,59 +96,166 @@ enum class CaptureSkip
 };
 
 /**
- * The footprint of a kernel of peak opacity `opacity`, center e in eye coordinates and
- * covariance V in coordinates that the linear map toEye takes to eye coordinates (the model's,
- * so that the 3 x 3 products are done once as 2 x 3 ones), under eyeToClip and a viewport of
- * the given size (see the file comment).
+ * A frame's constants for MakeCaptureFootprints, in float as the reference computes: the rows
+ * x, y and w of eyeToClip, the viewport's half size, the linear map toEye from the coordinates
+ * of the kernels' covariances (the model's, so that the 3 x 3 products are done once as 2 x 3
+ * ones) to eye coordinates, the near distance and the filter.
  */
-inline CaptureSkip MakeCaptureFootprint(const glm::dmat4& eyeToClip, const glm::dvec2& viewport,
-  double nearDistance, const glm::dvec3& e, const glm::dmat3& toEye, const glm::dmat3& V,
-  double opacity, FootprintFilter filter, CaptureFootprint& out)
+struct CaptureFrame
 {
-  out.Depth = -e.z;
-  PointProjection center;
-  if (!(out.Depth >= nearDistance) || !ProjectPoint(eyeToClip, viewport, e, center))
+  float Clip[4][3]; ///< per column of eyeToClip, its rows x, y and w
+  float HalfSize[2];
+  float ToEye[3][3]; ///< per column, as glm's
+  float NearDistance;
+  float FilterVariance;
+  bool Antialiased;
+
+  CaptureFrame(const glm::dmat4& eyeToClip, const glm::dvec2& viewport, const glm::dmat3& toEye,
+    FootprintFilter filter)
+    : HalfSize{ static_cast<float>(0.5 * viewport.x), static_cast<float>(0.5 * viewport.y) }
+    , NearDistance(static_cast<float>(NearPlaneDistance(eyeToClip)))
+    , FilterVariance(static_cast<float>(splat::FilterVariance(filter)))
+    , Antialiased(filter == FootprintFilter::Antialiased)
   {
-    return CaptureSkip::NearPlane;
+    for (int column = 0; column < 4; ++column)
+    {
+      this->Clip[column][0] = static_cast<float>(eyeToClip[column][0]);
+      this->Clip[column][1] = static_cast<float>(eyeToClip[column][1]);
+      this->Clip[column][2] = static_cast<float>(eyeToClip[column][3]);
+    }
+    for (int column = 0; column < 3; ++column)
+    {
+      for (int row = 0; row < 3; ++row)
+      {
+        this->ToEye[column][row] = static_cast<float>(toEye[column][row]);
+      }
+    }
   }
-  out.Center = center.Center;
+};
+
+/**
+ * Eight capture kernels, one per lane, for MakeCaptureFootprints. In: their centers in eye
+ * coordinates, their covariances in the coordinates CaptureFrame::ToEye maps to eye
+ * coordinates (xx, xy, xz, yy, yz, zz) and their peak opacities. Out, where Visible has the
+ * lane's bit: the footprint alpha(x) = min(0.99, Opacity exp(-q(x - Center))) with q(d) =
+ * ConicXX d.x^2 + ConicXY d.x d.y + ConicYY d.y^2 (half the conic's quadratic form), Opacity
+ * the filtered peak, Level the largest q(d) where alpha can reach 1/255 (a little more, for
+ * float rounding), and the half sizes of the box around Center holding the pixels of the
+ * reference's square where alpha can reach 1/255; Depth, -z of the center in eye
+ * coordinates (the sort key), in every lane.
+ */
+struct CaptureLanes
+{
+  Float8 Eye[3];
+  Float8 Covariance[6];
+  Float8 Opacity;
+  Float8 CenterX, CenterY;
+  Float8 ConicXX, ConicXY, ConicYY;
+  Float8 Level;
+  Float8 Depth;
+  Float8 HalfExtentX, HalfExtentY;
+  int InFront = 0; ///< lanes whose center is at least the near distance in front of the eye
+  int Visible = 0; ///< lanes in front whose alpha reaches 1/255 (before the viewport's clip)
+};
+
+/**
+ * The footprints of eight kernels under the rules of the file comment, in float (the
+ * reference's precision). A kernel not InFront is skipped as CaptureSkip::NearPlane; one in
+ * front but not Visible, or whose box (CoveredPixels) holds no pixel, as OutsideView.
+ */
+SPLAT_ALWAYS_INLINE void MakeCaptureFootprints(const CaptureFrame& frame, CaptureLanes& k)
+{
+  const Float8 zero(0.0f), one(1.0f);
+  k.Depth = zero - k.Eye[2];
+  Float8 clip[3];
+  for (int row = 0; row < 3; ++row)
+  {
+    clip[row] = k.Eye[0] * frame.Clip[0][row] + k.Eye[1] * frame.Clip[1][row] +
+      k.Eye[2] * frame.Clip[2][row] + frame.Clip[3][row];
+  }
+  const int behind =
+    Float8::LessMask(k.Depth, frame.NearDistance) | Float8::LessMask(clip[2], 1e-30f);
+  k.InFront = ~behind & 0xff;
+  // Lanes behind the eye divide by one: they are left out.
+  const Float8 inverseW = one / Float8::SelectLess(clip[2], 1e-30f, one, clip[2]);
+  const Float8 ndcX = clip[0] * inverseW, ndcY = clip[1] * inverseW;
+  k.CenterX = (ndcX + 1.0f) * frame.HalfSize[0];
+  k.CenterY = (ndcY + 1.0f) * frame.HalfSize[1];
   // The Jacobian's rows d(pixel)/d(eye) at the center with its NDC clamped (no effect for a
   // parallel projection, whose clip w does not depend on the position).
-  PointProjection clamped = center;
-  clamped.Ndc = glm::clamp(center.Ndc, -CaptureJacobianClamp, CaptureJacobianClamp);
-  glm::dmat3x2 J;
+  const float bound = static_cast<float>(CaptureJacobianClamp);
+  const auto clamped = [bound](const Float8& x)
+  { return Float8::SelectLess(x, -bound, -bound, Float8::SelectLess(bound, x, bound, x)); };
+  const Float8 clampedX = clamped(ndcX), clampedY = clamped(ndcY);
+  const Float8 scaleX = inverseW * frame.HalfSize[0], scaleY = inverseW * frame.HalfSize[1];
+  Float8 J[2][3];
   for (int axis = 0; axis < 3; ++axis)
   {
-    J[axis] = clamped.PixelDerivative(eyeToClip[axis]);
+    J[0][axis] = (Float8(frame.Clip[axis][0]) - clampedX * frame.Clip[axis][2]) * scaleX;
+    J[1][axis] = (Float8(frame.Clip[axis][1]) - clampedY * frame.Clip[axis][2]) * scaleY;
   }
-  const glm::dmat3x2 T = J * toEye;
-  const glm::dmat2 projected = T * V * glm::transpose(T);
-  const glm::dmat2 covariance = projected + glm::dmat2(FilterVariance(filter));
-  const double det = glm::determinant(covariance);
-  out.Opacity = opacity * PeakOpacityCompensation(filter, projected);
-  if (!(det > 0.0) || !(out.Opacity >= CaptureMinimumAlpha))
+  // T = J toEye, then T V T^T through W = T V.
+  Float8 T[2][3];
+  for (int row = 0; row < 2; ++row)
   {
-    return CaptureSkip::OutsideView;
+    for (int column = 0; column < 3; ++column)
+    {
+      T[row][column] = J[row][0] * frame.ToEye[column][0] + J[row][1] * frame.ToEye[column][1] +
+        J[row][2] * frame.ToEye[column][2];
+    }
   }
-  const glm::dmat2 conic = glm::inverse(covariance);
-  out.ConicXX = 0.5 * conic[0][0];
-  out.ConicXY = conic[1][0];
-  out.ConicYY = 0.5 * conic[1][1];
+  const Float8* V = k.Covariance;
+  Float8 W[2][3];
+  for (int row = 0; row < 2; ++row)
+  {
+    W[row][0] = T[row][0] * V[0] + T[row][1] * V[1] + T[row][2] * V[2];
+    W[row][1] = T[row][0] * V[1] + T[row][1] * V[3] + T[row][2] * V[4];
+    W[row][2] = T[row][0] * V[2] + T[row][1] * V[4] + T[row][2] * V[5];
+  }
+  const Float8 projectedXX = W[0][0] * T[0][0] + W[0][1] * T[0][1] + W[0][2] * T[0][2];
+  const Float8 projectedXY = W[0][0] * T[1][0] + W[0][1] * T[1][1] + W[0][2] * T[1][2];
+  const Float8 projectedYY = W[1][0] * T[1][0] + W[1][1] * T[1][1] + W[1][2] * T[1][2];
+  const Float8 xx = projectedXX + frame.FilterVariance;
+  const Float8 yy = projectedYY + frame.FilterVariance;
+  const Float8 det = xx * yy - projectedXY * projectedXY;
+  if (frame.Antialiased)
+  {
+    // The peak scaled by sqrt(|V'| / |V' + 0.3 I|), as PeakOpacityCompensation.
+    const Float8 unfiltered = projectedXX * projectedYY - projectedXY * projectedXY;
+    const Float8 ratio = Float8::SelectLess(zero, det, unfiltered / det, zero);
+    k.Opacity = k.Opacity * Float8::Sqrt(Float8::SelectLess(ratio, zero, zero, ratio));
+  }
+  k.Visible = k.InFront & Float8::LessMask(zero, det) &
+    ~Float8::LessMask(k.Opacity, CaptureMinimumAlpha);
+  const Float8 inverseDet = one / Float8::SelectLess(zero, det, det, one);
+  k.ConicXX = 0.5f * yy * inverseDet;
+  k.ConicXY = (zero - projectedXY) * inverseDet;
+  k.ConicYY = 0.5f * xx * inverseDet;
   // The reference's square: 3 standard deviations along the larger eigenvalue, rounded up.
-  const double mid = 0.5 * (covariance[0][0] + covariance[1][1]);
-  const double largest = mid + std::sqrt(std::max(0.1, mid * mid - det));
-  const double radius = std::ceil(3.0 * std::sqrt(largest));
+  const Float8 mid = 0.5f * (xx + yy);
+  const Float8 spread = mid * mid - det;
+  const Float8 largest = mid + Float8::Sqrt(Float8::SelectLess(spread, 0.1f, 0.1f, spread));
+  const Float8 reach = 3.0f * Float8::Sqrt(largest);
+  const Float8 truncated = Float8::Truncated(reach);
+  const Float8 radius = Float8::SelectLess(truncated, reach, truncated + 1.0f, truncated);
   // Within it, alpha reaches 1/255 only inside the ellipse d^T Conic d <= 2 ln(255 opacity),
   // whose bounding box is sqrt(level V'_xx) by sqrt(level V'_yy); a little wider, so that float
   // rounding at its edge stays inside.
-  out.Level = std::log(std::min(out.Opacity, 1.0) / CaptureMinimumAlpha) * 1.001;
-  const double level = 2.0 * out.Level;
-  const glm::dvec2 halfExtent(std::min(radius, std::sqrt(level * covariance[0][0]) + 1e-3),
-    std::min(radius, std::sqrt(level * covariance[1][1]) + 1e-3));
-  return CoveredPixels(out.Center, halfExtent, static_cast<int>(viewport.x),
-           static_cast<int>(viewport.y), out.Box)
-    ? CaptureSkip::Kept
-    : CaptureSkip::OutsideView;
+  alignas(32) float opacities[8];
+  alignas(32) float levels[8];
+  k.Opacity.Store(opacities);
+  for (int lane = 0; lane < 8; ++lane)
+  {
+    levels[lane] = k.Visible >> lane & 1
+      ? std::log(std::min(opacities[lane], 1.0f) / CaptureMinimumAlpha) * 1.001f
+      : 0.0f;
+  }
+  k.Level = Float8::Load(levels);
+  const Float8 level = 2.0f * k.Level;
+  const Float8 boxX = Float8::Sqrt(level * xx) + 1e-3f;
+  const Float8 boxY = Float8::Sqrt(level * yy) + 1e-3f;
+  k.HalfExtentX = Float8::SelectLess(radius, boxX, radius, boxX);
+  k.HalfExtentY = Float8::SelectLess(radius, boxY, radius, boxY);
 }
 
 /**

@@ -131,6 +131,34 @@ struct Float8
     return LessMask(less, than) != 0;
   }
 
+  /// The square root per lane, by SSE's instruction on each half (so also in the baseline
+  /// clone, where a loop of std::sqrt would be calls that set errno).
+  SPLAT_FLOAT8 static Float8 Sqrt(const Float8& x)
+  {
+#if defined(__SSE__)
+    Quad halves[2];
+    std::memcpy(halves, &x.V, sizeof(halves));
+    halves[0] = __builtin_ia32_sqrtps(halves[0]);
+    halves[1] = __builtin_ia32_sqrtps(halves[1]);
+    Vector r;
+    std::memcpy(&r, halves, sizeof(r));
+    return Float8(r);
+#else
+    Vector r;
+    for (int i = 0; i < 8; ++i)
+    {
+      r[i] = std::sqrt(x.V[i]);
+    }
+    return Float8(r);
+#endif
+  }
+
+  /// Rounded toward zero per lane, for lanes of magnitude below 2^31.
+  SPLAT_FLOAT8 static Float8 Truncated(const Float8& x)
+  {
+    return Float8(__builtin_convertvector(__builtin_convertvector(x.V, Integers), Vector));
+  }
+
   /// -|x| per lane: the sign bit set.
   SPLAT_FLOAT8 Float8 NegatedMagnitude() const
   {
@@ -295,6 +323,22 @@ struct Float8
   static bool AnyLess(const Float8& less, const Float8& than)
   {
     return LessMask(less, than) != 0;
+  }
+  static Float8 Sqrt(Float8 x)
+  {
+    for (float& v : x.V)
+    {
+      v = std::sqrt(v);
+    }
+    return x;
+  }
+  static Float8 Truncated(Float8 x)
+  {
+    for (float& v : x.V)
+    {
+      v = std::trunc(v);
+    }
+    return x;
   }
   Float8 NegatedMagnitude() const
   {

@@ -4,7 +4,7 @@
 // for the descending traversal of a list), four vertices (a triangle strip) covering the box of
 // its footprint's cutoff ellipse. The per-kernel setup mirrors vtkVolumeSplatRasterizer's step 2
 // and SplatVolumeKernel.h (CrossesNearPlane, ProjectVolumeKernel, MakeVolumeFootprint,
-// TruncationCompensation), SplatCaptureKernel.h (MakeCaptureFootprint, for captures in their
+// TruncationCompensation), SplatCaptureKernel.h (MakeCaptureFootprints, for captures in their
 // depth order) and CoveredPixels (SplatSurfelKernel.h) line by line, colors kernels
 // with spherical harmonics as vtkVolumeSplatRasterizer::UpdateViewColors does and shades
 // kernels with normals as vtkVolumeSplatRasterizer::ShadeKernel does.
@@ -121,7 +121,7 @@ void main()
   vec2 halfExtent = sqrt(2.0 * cutoff * vec2(mxx, myy));
   if (captureRules != 0)
   {
-    // MakeCaptureFootprint: the reference's square, within it the ellipse where alpha can
+    // MakeCaptureFootprints: the reference's square, within it the ellipse where alpha can
     // reach 1/255.
     float mid = 0.5 * (mxx + myy);
     float radius = ceil(3.0 * sqrt(mid + sqrt(max(0.1, mid * mid - detM))));
