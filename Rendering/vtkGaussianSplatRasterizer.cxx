@@ -185,8 +185,9 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uin
   const Float8 zero(0.0f);
   for (std::size_t n = 0; n < count && open != 0; ++n)
   {
-    // The tile's kernels lie all over memory (the depth order is not the input's): fetched
-    // ahead, they come while the kernels before them are composited.
+    // The tile's kernels come in depth order, not in memory order (near one another when the
+    // mapper keeps captures along a Z curve, all over memory otherwise): fetched ahead, they
+    // come while the kernels before them are composited.
     if (n + PrefetchDistance < count)
     {
       Prefetch(KernelOf(splats, entries[n + PrefetchDistance]));

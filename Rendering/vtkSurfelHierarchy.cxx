@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSurfelHierarchy.h"
 
+#include "SplatMortonCode.h"
+
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
@@ -34,18 +36,6 @@ constexpr double GrazingCosine = 0.1;
 // The minor axis variance of a merged node is at least this share of the major one: a cell cut
 // by the surface in a sliver must not become a needle.
 constexpr double MinimumAspect = 1.0 / 64.0;
-
-// The bits of a 20-bit value spread to every third bit.
-std::uint64_t SpreadBits(std::uint64_t x)
-{
-  x &= 0xfffff;
-  x = (x | x << 32) & 0x1f00000000ffffULL;
-  x = (x | x << 16) & 0x1f0000ff0000ffULL;
-  x = (x | x << 8) & 0x100f00f00f00f00fULL;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-  x = (x | x << 2) & 0x1249249249249249ULL;
-  return x;
-}
 
 // The dominant axis of a normal and its sign, 0 to 5: the sides of a thin part differ.
 std::uint64_t NormalClass(const float* n)
@@ -212,7 +202,8 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
         for (int c = 0; c < 3; ++c)
         {
           const double q = std::floor((surfels.Positions[3 * i + c] - lo[c]) / cell);
-          morton |= SpreadBits(std::min(static_cast<std::uint64_t>(std::max(q, 0.0)), top)) << c;
+          const std::uint64_t index = std::min(static_cast<std::uint64_t>(std::max(q, 0.0)), top);
+          morton |= splat::SpreadBits(index) << c;
         }
         entries[i] = { NormalClass(surfels.Normals + 3 * i) << (3 * CellBits) | morton,
           static_cast<std::uint32_t>(i) };

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkVolumeSplatMapper.h"
 
+#include "SplatMortonCode.h"
 #include "SplatSphericalHarmonics.h"
 #include "SplatVolumeKernel.h"
 #include "vtkOpenGLImageDepthCompositor.h"
@@ -31,14 +32,75 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkVolumeSplatMapper);
+
+namespace
+{
+// Asks for an array's tuple ahead of its use (arrays in VTK's standard layout; none for others).
+void PrefetchTuple(vtkDataArray* array, vtkIdType i)
+{
+#if defined(__GNUC__)
+  if (array && array->HasStandardMemoryLayout())
+  {
+    const int components = array->GetNumberOfComponents();
+    const char* row = static_cast<const char*>(array->GetVoidPointer(0)) +
+      i * components * array->GetDataTypeSize();
+    for (int line = 0; line < components * array->GetDataTypeSize(); line += 64)
+    {
+      __builtin_prefetch(row + line);
+    }
+  }
+#else
+  (void)array;
+  (void)i;
+#endif
+}
+
+// The points' ids in the order of a Z curve through their bounds (21 bits an axis; a
+// coordinate that is not finite counts as the lowest). Kernels built in this order lie near the
+// kernels they share a screen tile with: the CPU capture rasterizer reads each tile's kernels
+// in their depth order, and from an input in no spatial order (a trained capture's densified
+// Gaussians, the bench's generated one) its compositing spent a third of its time waiting on
+// those reads.
+std::vector<vtkIdType> ZCurveOrder(vtkPointSet* input)
+{
+  const vtkIdType n = input->GetNumberOfPoints();
+  double bounds[6];
+  input->GetPoints()->GetBounds(bounds);
+  std::vector<std::pair<std::uint64_t, vtkIdType>> codes(n);
+  vtkSMPTools::For(0, n,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        double p[3];
+        input->GetPoint(i, p);
+        std::uint64_t code = 0;
+        for (int c = 0; c < 3; ++c)
+        {
+          const double extent = bounds[2 * c + 1] - bounds[2 * c];
+          const double t = extent > 0.0 ? (p[c] - bounds[2 * c]) / extent : 0.0;
+          const double cell = std::isfinite(t) ? std::min(std::max(t, 0.0), 1.0) * 0x1fffff : 0.0;
+          code |= splat::SpreadBits(static_cast<std::uint64_t>(cell)) << c;
+        }
+        codes[i] = { code, i };
+      }
+    });
+  vtkSMPTools::Sort(codes.begin(), codes.end());
+  std::vector<vtkIdType> order(n);
+  std::transform(codes.begin(), codes.end(), order.begin(), [](const auto& c) { return c.second; });
+  return order;
+}
+}
 
 // The kernels of the current input, rebuilt only when it, the mapper or the volume property
 // changes.
@@ -859,12 +921,24 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
   k.SphericalHarmonicsDegree = std::max(degree, 0);
   std::vector<double> tuple(coefficientCount);
   std::vector<float> coefficients(coefficientCount);
-  for (vtkIdType i = 0; i < n; ++i)
+  const std::vector<vtkIdType> order = opacities ? ZCurveOrder(input) : std::vector<vtkIdType>();
+  vtkDataArray* const read[] = { input->GetPoints()->GetData(), covariances, scales, rotations,
+    opacities, harmonics, colors, normals, scalars, sampleVolumes };
+  for (vtkIdType j = 0; j < n; ++j)
   {
-    if (i % 65536 == 0)
+    // In the curve's order, the rows come from all over the arrays: asked for ahead.
+    for (vtkDataArray* array : read)
     {
-      ReportKernelProgress(this, static_cast<double>(i) / n);
+      if (!order.empty() && j + 16 < n)
+      {
+        PrefetchTuple(array, order[j + 16]);
+      }
     }
+    if (j % 65536 == 0)
+    {
+      ReportKernelProgress(this, static_cast<double>(j) / n);
+    }
+    const vtkIdType i = order.empty() ? j : order[j];
     double p[3];
     input->GetPoint(i, p);
     glm::dmat3 V(0.0);

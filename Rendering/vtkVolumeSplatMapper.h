@@ -13,7 +13,8 @@
  * default as the rasterizer they were optimized against draws them: the 0.3 px^2 dilation
  * instead of the low-pass (SetFootprintFilter) and the exact per-Gaussian depth order
  * (vtkGaussianSplatRasterizer on the CPU, SplatCaptureKernel.h), the image they were trained to
- * produce.
+ * produce. Their kernels are kept in the order of a Z curve through their centers rather than
+ * the input's, so that the kernels of a screen tile lie near one another in memory.
  *
  * Inputs:
  * - vtkImageData, scalars on points: one kernel per voxel, centered on the point, with standard
