@@ -231,7 +231,8 @@ SPLAT_ALWAYS_INLINE void MakeCaptureFootprints(const CaptureFrame& frame, Captur
   k.ConicXX = 0.5f * yy * inverseDet;
   k.ConicXY = (zero - projectedXY) * inverseDet;
   k.ConicYY = 0.5f * xx * inverseDet;
-  // The reference's square: 3 standard deviations along the larger eigenvalue, rounded up.
+  // The reference's square: 3 standard deviations along the larger eigenvalue, rounded up
+  // (read only for the visible lanes: the others' can be NaN).
   const Float8 mid = 0.5f * (xx + yy);
   const Float8 spread = mid * mid - det;
   const Float8 largest = mid + Float8::Sqrt(Float8::SelectLess(spread, 0.1f, 0.1f, spread));

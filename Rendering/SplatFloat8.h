@@ -153,7 +153,8 @@ struct Float8
 #endif
   }
 
-  /// Rounded toward zero per lane, for lanes of magnitude below 2^31.
+  /// Rounded toward zero per lane, for lanes of magnitude below 2^31; any other lane (NaN and
+  /// infinities included) gets an unspecified value, for the caller not to read.
   SPLAT_FLOAT8 static Float8 Truncated(const Float8& x)
   {
     return Float8(__builtin_convertvector(__builtin_convertvector(x.V, Integers), Vector));
