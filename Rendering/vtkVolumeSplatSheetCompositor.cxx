@@ -22,8 +22,13 @@ namespace
 // of 16-row bands about a quarter of the time) and an intermediate image has fewer rows.
 constexpr int BandHeight = 32;
 
-// Intermediate pixels per standard deviation of the narrowest footprint on the front sheet.
+// Intermediate pixels per standard deviation of the narrowest footprint on the front sheet, and
+// at least per screen pixel along the sheet's least foreshortened direction there. The first
+// rules where the screen's low-pass dominates the footprints (0.7 per sigma is then about 0.6
+// per pixel: the MRI at 512^2); the second where voxels are magnified, whose footprints 0.7
+// samples per sigma leave blurred and aliased (the report's vdb cloud: 0.33 per pixel).
 constexpr double SamplesPerSigma = 0.7;
+constexpr double SamplesPerPixel = 0.6;
 
 // The largest optical depth per sheet spacing (along the axis) of two voxels that
 // vtkVolumeSplatSheetCompositor merges into one kernel: the order within a pair, which the merge
@@ -216,6 +221,7 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
   const glm::dvec2 tileSize = (extent + 1.0) / static_cast<double>(Tiles);
   l.TileScale = glm::vec2(1.0 / tileSize);
   std::vector<glm::dmat2> lattices(static_cast<std::size_t>(layers) * Tiles * Tiles);
+  std::vector<double> pixelsPerUnit(lattices.size()); // the largest stretch from sheet to screen
   for (std::size_t f = 0; f < lattices.size(); ++f)
   {
     const int layer = static_cast<int>(f / (Tiles * Tiles));
@@ -249,18 +255,23 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
       return false;
     }
     const glm::dmat2 pixelsToSheet = glm::inverse(sheetToPixels);
+    pixelsPerUnit[f] =
+      std::sqrt(splat::LargestEigenvalue(glm::transpose(sheetToPixels) * sheetToPixels));
     lattice += pixelsToSheet * glm::transpose(pixelsToSheet);
   }
   // The intermediate image's pixels per lattice unit of the front sheet: SamplesPerSigma along
-  // the narrowest footprint there, so that the warp follows the footprints' shape.
+  // the narrowest footprint there, so that the warp follows the footprints' shape, and
+  // SamplesPerPixel along the screen's finest stretch of the sheet.
   double narrowest = std::numeric_limits<double>::infinity();
+  double finest = 0.0;
   const int front = l.Ascending ? 0 : layers - 1;
   for (int tile = 0; tile < Tiles * Tiles; ++tile)
   {
     const glm::dmat2& f = lattices[front * Tiles * Tiles + tile];
     narrowest = std::min(narrowest, f[0][0] + f[1][1] - splat::LargestEigenvalue(f));
+    finest = std::max(finest, pixelsPerUnit[front * Tiles * Tiles + tile]);
   }
-  l.Resolution = SamplesPerSigma / std::sqrt(narrowest);
+  l.Resolution = std::max(SamplesPerSigma / std::sqrt(narrowest), SamplesPerPixel * finest);
   if (!std::isfinite(l.Resolution))
   {
     return false;

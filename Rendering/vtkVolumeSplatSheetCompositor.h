@@ -41,8 +41,8 @@
  * without it (MRI RMSE 0.0012 against 0.0014 with it). A lone last sheet is a layer of its own.
  *
  * The approximations against the exact path: one footprint per tile of a layer, the pairs, and
- * the warp of an image sampled at 0.7 samples per footprint deviation (TestVolumeSplatSheets
- * bounds the difference, with and without the pairs).
+ * the warp of an image sampled at 0.7 samples per footprint deviation and at least 0.6 per
+ * screen pixel (TestVolumeSplatSheets bounds the difference, with and without the pairs).
  * Intermediate pixels that no screen pixel reads are left out, and pixels stop integrating at
  * the rasterizer's termination opacity: a voxel row, or a voxel, whose footprints reach only
  * such pixels is passed over before its setup, and a band of rows ends its traversal once all
