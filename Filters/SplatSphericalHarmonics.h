@@ -54,17 +54,17 @@ constexpr float ShC3[7] = { -0.5900435899266435f, 2.890611442640554f, -0.4570457
   0.3731763325901154f, -0.4570457994644658f, 1.445305721320277f, -0.5900435899266435f };
 
 /**
- * The basis functions up to `degree` (0 to 3) at the unit direction d, in eval_sh's order:
- * basis[0 .. (degree + 1)^2 - 1].
+ * The basis functions up to `degree` (0 to 3) at the unit direction (x, y, z), in eval_sh's
+ * order: basis[0 .. (degree + 1)^2 - 1]. For floats, or per lane for splat::Float8.
  */
-inline void SphericalHarmonicsBasis(const glm::vec3& d, int degree, float* basis)
+template <typename T>
+inline void SphericalHarmonicsBasis(const T& x, const T& y, const T& z, int degree, T* basis)
 {
-  basis[0] = ShC0;
+  basis[0] = T(ShC0);
   if (degree < 1)
   {
     return;
   }
-  const float x = d.x, y = d.y, z = d.z;
   basis[1] = -ShC1 * y;
   basis[2] = ShC1 * z;
   basis[3] = -ShC1 * x;
@@ -72,8 +72,8 @@ inline void SphericalHarmonicsBasis(const glm::vec3& d, int degree, float* basis
   {
     return;
   }
-  const float xx = x * x, yy = y * y, zz = z * z;
-  const float xy = x * y, yz = y * z, xz = x * z;
+  const T xx = x * x, yy = y * y, zz = z * z;
+  const T xy = x * y, yz = y * z, xz = x * z;
   basis[4] = ShC2[0] * xy;
   basis[5] = ShC2[1] * yz;
   basis[6] = ShC2[2] * (2.0f * zz - xx - yy);
@@ -90,6 +90,12 @@ inline void SphericalHarmonicsBasis(const glm::vec3& d, int degree, float* basis
   basis[13] = ShC3[4] * x * (4.0f * zz - xx - yy);
   basis[14] = ShC3[5] * z * (xx - yy);
   basis[15] = ShC3[6] * x * (xx - 3.0f * yy);
+}
+
+/// The same at the unit direction d, for floats.
+inline void SphericalHarmonicsBasis(const glm::vec3& d, int degree, float* basis)
+{
+  SphericalHarmonicsBasis(d.x, d.y, d.z, degree, basis);
 }
 
 /**

@@ -17,6 +17,7 @@
 #include "SplatExponential.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 
@@ -50,6 +51,23 @@
 
 namespace splat
 {
+/// Asks for the cache lines of bytes [p, p + bytes) ahead of their use: a hint, which never
+/// faults, also for addresses past an array's end.
+SPLAT_ALWAYS_INLINE void PrefetchBytes(const void* p, std::size_t bytes)
+{
+#if defined(__GNUC__)
+  const char* first = static_cast<const char*>(p);
+  for (std::size_t offset = 0; offset < bytes; offset += 64)
+  {
+    __builtin_prefetch(first + offset);
+  }
+  __builtin_prefetch(first + bytes - 1); // the last line, where p is not at a line's start
+#else
+  (void)p;
+  (void)bytes;
+#endif
+}
+
 #if defined(__GNUC__)
 // Inlined also into the AVX2 clones, whatever their size.
 #define SPLAT_FLOAT8 __attribute__((always_inline))
@@ -202,6 +220,36 @@ struct Float8
     std::memcpy(p, q, sizeof(q));
   }
 
+  /// The columns of eight rows of eight floats, row r at p + r stride: lane r of columns[i]
+  /// (i < 8) is float i of row r (two 4 x 4 transposes in each half, then the halves
+  /// exchanged).
+  SPLAT_FLOAT8 static void LoadColumns(const float* p, std::ptrdiff_t stride, Float8* columns)
+  {
+    // Each row loaded into a register (a loop of copies into an array went through the stack,
+    // a store of two halves and a load of the whole that waited for them).
+    const auto load = [p, stride](int r, Vector& v) SPLAT_INLINE_LAMBDA
+    { std::memcpy(&v, p + r * stride, sizeof(v)); };
+    Vector upperRows[4], lowerRows[4];
+    load(0, upperRows[0]);
+    load(1, upperRows[1]);
+    load(2, upperRows[2]);
+    load(3, upperRows[3]);
+    load(4, lowerRows[0]);
+    load(5, lowerRows[1]);
+    load(6, lowerRows[2]);
+    load(7, lowerRows[3]);
+    Float8 upper[4], lower[4];
+    Transpose(upperRows, upper);
+    Transpose(lowerRows, lower);
+    for (int i = 0; i < 4; ++i)
+    {
+      columns[i] =
+        Float8(__builtin_shufflevector(upper[i].V, lower[i].V, 0, 1, 2, 3, 8, 9, 10, 11));
+      columns[i + 4] =
+        Float8(__builtin_shufflevector(upper[i].V, lower[i].V, 4, 5, 6, 7, 12, 13, 14, 15));
+    }
+  }
+
   /// splat::NegativeExponential per lane, step by step.
   SPLAT_FLOAT8 static Float8 NegativeExponential(const Float8& x)
   {
@@ -216,12 +264,27 @@ struct Float8
   {
     constexpr float Log2E = 1.44269504088896341f;
     const Vector t = -(x.V > Largest ? Vector{} + Largest : x.V) * Log2E;
-    constexpr float Shifter = 12582912.0f;
     const Vector n = (t + Shifter) - Shifter;
     const Vector f = (t - n) * 0.693147180559945309f;
     Vector p;
     ExponentialPolynomial(f, p);
     const Integers exponent = (__builtin_convertvector(n, Integers) + 127) << 23;
+    Vector scale;
+    std::memcpy(&scale, &exponent, sizeof(scale));
+    return Float8(p * scale);
+  }
+
+  /// splat::NegativeExponential2 per lane: 2^-x for x >= 0 (2^-126 past 126 and for NaN).
+  SPLAT_FLOAT8 static Float8 NegativeExponential2(const Float8& x)
+  {
+    const Vector t = x.V < 126.0f ? x.V : Vector{} + 126.0f;
+    const Vector shifted = Shifter - t;
+    const Vector g = t + (shifted - Shifter);
+    Vector p;
+    NegativeExponential2Polynomial(g, p);
+    Integers bits;
+    std::memcpy(&bits, &shifted, sizeof(bits));
+    const Integers exponent = (bits - (ShifterBits - 127)) << 23;
     Vector scale;
     std::memcpy(&scale, &exponent, sizeof(scale));
     return Float8(p * scale);
@@ -359,6 +422,14 @@ struct Float8
     return x;
   }
   static Float8 NegativeExponentialAbove(const Float8& x) { return NegativeExponential(x); }
+  static Float8 NegativeExponential2(Float8 x)
+  {
+    for (float& v : x.V)
+    {
+      v = splat::NegativeExponential2(v);
+    }
+    return x;
+  }
   static void LoadChannels(const float* p, Float8 (&channels)[4])
   {
     for (int i = 0; i < 8; ++i)
@@ -376,6 +447,16 @@ struct Float8
       for (int c = 0; c < 4; ++c)
       {
         p[4 * i + c] = channels[c].V[i];
+      }
+    }
+  }
+  static void LoadColumns(const float* p, std::ptrdiff_t stride, Float8* columns)
+  {
+    for (int r = 0; r < 8; ++r)
+    {
+      for (int i = 0; i < 8; ++i)
+      {
+        columns[i].V[r] = p[r * stride + i];
       }
     }
   }

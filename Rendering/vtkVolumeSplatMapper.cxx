@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkVolumeSplatMapper.h"
 
+#include "SplatFloat8.h"
 #include "SplatMortonCode.h"
 #include "SplatSphericalHarmonics.h"
 #include "SplatVolumeKernel.h"
@@ -32,8 +33,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -45,26 +46,6 @@ vtkStandardNewMacro(vtkVolumeSplatMapper);
 
 namespace
 {
-// Asks for an array's tuple ahead of its use (arrays in VTK's standard layout; none for others).
-void PrefetchTuple(vtkDataArray* array, vtkIdType i)
-{
-#if defined(__GNUC__)
-  if (array && array->HasStandardMemoryLayout())
-  {
-    const int components = array->GetNumberOfComponents();
-    const char* row = static_cast<const char*>(array->GetVoidPointer(0)) +
-      i * components * array->GetDataTypeSize();
-    for (int line = 0; line < components * array->GetDataTypeSize(); line += 64)
-    {
-      __builtin_prefetch(row + line);
-    }
-  }
-#else
-  (void)array;
-  (void)i;
-#endif
-}
-
 // The points' ids in the order of a Z curve through their bounds (21 bits an axis; a
 // coordinate that is not finite counts as the lowest). Kernels built in this order lie near the
 // kernels they share a screen tile with: the CPU capture rasterizer reads each tile's kernels
@@ -922,16 +903,26 @@ bool vtkVolumeSplatMapper::BuildPointKernels(vtkPointSet* input, vtkVolumeProper
   std::vector<double> tuple(coefficientCount);
   std::vector<float> coefficients(coefficientCount);
   const std::vector<vtkIdType> order = opacities ? ZCurveOrder(input) : std::vector<vtkIdType>();
+  // In the curve's order, the rows come from all over the arrays: the rows of arrays in VTK's
+  // standard layout are asked for 16 kernels ahead (per array, its first row and row bytes).
   vtkDataArray* const read[] = { input->GetPoints()->GetData(), covariances, scales, rotations,
     opacities, harmonics, colors, normals, scalars, sampleVolumes };
+  std::vector<std::pair<const char*, int>> rows;
+  for (vtkDataArray* array : read)
+  {
+    if (!order.empty() && array && array->HasStandardMemoryLayout())
+    {
+      rows.emplace_back(static_cast<const char*>(array->GetVoidPointer(0)),
+        array->GetNumberOfComponents() * array->GetDataTypeSize());
+    }
+  }
   for (vtkIdType j = 0; j < n; ++j)
   {
-    // In the curve's order, the rows come from all over the arrays: asked for ahead.
-    for (vtkDataArray* array : read)
+    for (const auto& row : rows)
     {
-      if (!order.empty() && j + 16 < n)
+      if (j + 16 < n)
       {
-        PrefetchTuple(array, order[j + 16]);
+        splat::PrefetchBytes(row.first + order[j + 16] * row.second, row.second);
       }
     }
     if (j % 65536 == 0)

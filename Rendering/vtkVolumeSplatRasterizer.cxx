@@ -84,21 +84,81 @@ namespace
 using ScreenKernel = vtkVolumeSplatRasterizer::ScreenKernel;
 using PixelLists = vtkVolumeSplatRasterizer::PixelLists;
 
-// The spherical-harmonic colors of kernels begin to end seen from `key` (the view point, w = 1,
-// or the view axis, w = 0), into colors (RGB per kernel). A function of its own for
-// SPLAT_VECTOR_CLONES_INLINED: the AVX2 clone sums the coefficients in fused vector steps.
+// The spherical-harmonic colors of kernels begin (a multiple of eight) to end (of `count`) seen
+// from `key` (the view point, w = 1, or the view axis, w = 0), into colors (RGB per kernel).
+// Eight kernels at a time, one per lane: their rows of coefficients transposed eight floats at
+// a time, so that each float is one fused step for eight kernels. SphericalHarmonicsColor's
+// result but for rounding, at 3.6 times its speed (1 M kernels of degree 3 on one thread, AVX2:
+// 12.6 ms against 45.5). A function of its own for SPLAT_VECTOR_CLONES_INLINED.
 SPLAT_VECTOR_CLONES_INLINED void EvaluateViewColors(const double* positions,
-  const float* coefficients, int stride, int degree, const glm::dvec4& key, vtkIdType begin,
-  vtkIdType end, float* colors)
+  const float* coefficients, vtkIdType count, int stride, int degree, const glm::dvec4& key,
+  vtkIdType begin, vtkIdType end, float* colors)
 {
-  for (vtkIdType i = begin; i < end; ++i)
+  using splat::Float8;
+  const auto direction = [&](vtkIdType i)
   {
     const double* p = positions + 3 * i;
-    const glm::vec3 direction = key.w != 0.0
-      ? glm::vec3(glm::dvec3(p[0], p[1], p[2]) - glm::dvec3(key))
-      : glm::vec3(key);
+    return key.w != 0.0 ? glm::vec3(glm::dvec3(p[0], p[1], p[2]) - glm::dvec3(key))
+                        : glm::vec3(key);
+  };
+  const int floats = 3 * splat::SphericalHarmonicsCoefficients(degree);
+  const int blocks = (floats + 7) / 8;
+  vtkIdType i = begin;
+  // A row is read in whole blocks of eight floats, past its end into the next kernel's row:
+  // the kernels with no row after theirs take the per-kernel sums.
+  for (; i + 8 <= end && (8 * blocks <= stride || i + 8 < count); i += 8)
+  {
+    alignas(32) float d[3][8];
+    for (int lane = 0; lane < 8; ++lane)
+    {
+      const glm::vec3 v = direction(i + lane);
+      for (int c = 0; c < 3; ++c)
+      {
+        d[c][lane] = v[c];
+      }
+    }
+    const Float8 x = Float8::Load(d[0]), y = Float8::Load(d[1]), z = Float8::Load(d[2]);
+    const Float8 length = Float8::Sqrt(x * x + y * y + z * z);
+    const Float8 zero(0.0f);
+    const auto unit = [&](const Float8& v)
+    { return Float8::SelectLess(zero, length, v / length, zero); };
+    Float8 basis[splat::MaximumSphericalHarmonicsCoefficients];
+    splat::SphericalHarmonicsBasis(unit(x), unit(y), unit(z), degree, basis);
+    // The rows of the group two ahead, asked for now: read eight rows at a time, they come
+    // from memory at half the speed otherwise (22 ms instead of 12.6 in the figure above).
+    splat::PrefetchBytes(coefficients + stride * (i + 16), 8 * sizeof(float) * stride);
+    Float8 columns[3 * splat::MaximumSphericalHarmonicsCoefficients];
+    for (int block = 0; block < blocks; ++block)
+    {
+      Float8::LoadColumns(coefficients + stride * i + 8 * block, stride, columns + 8 * block);
+    }
+    // Three sums in registers (an array indexed by the float would keep them in memory).
+    Float8 red(0.5f), green(0.5f), blue(0.5f);
+    for (int k = 0; k < floats / 3; ++k)
+    {
+      red = red + basis[k] * columns[3 * k];
+      green = green + basis[k] * columns[3 * k + 1];
+      blue = blue + basis[k] * columns[3 * k + 2];
+    }
+    alignas(32) float rgb[3][8];
+    const Float8 sums[3] = { red, green, blue };
+    for (int c = 0; c < 3; ++c)
+    {
+      const Float8 clamped = Float8::SelectLess(sums[c], zero, zero, sums[c]);
+      Float8::SelectLess(1.0f, clamped, 1.0f, clamped).Store(rgb[c]);
+    }
+    for (int lane = 0; lane < 8; ++lane)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        colors[3 * (i + lane) + c] = rgb[c][lane];
+      }
+    }
+  }
+  for (; i < end; ++i)
+  {
     const glm::vec3 color =
-      splat::SphericalHarmonicsColor(coefficients + stride * i, degree, direction);
+      splat::SphericalHarmonicsColor(coefficients + stride * i, degree, direction(i));
     std::copy_n(&color.x, 3, colors + 3 * i);
   }
 }
@@ -815,11 +875,14 @@ const float* vtkVolumeSplatRasterizer::UpdateViewColors(const Camera& camera, bo
   }
   internal.ViewColors.resize(3 * input.Count);
   const int stride = 3 * splat::SphericalHarmonicsCoefficients(input.SphericalHarmonicsDegree);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(input.Count),
+  // In whole groups of eight, so that which kernels EvaluateViewColors takes eight at a time
+  // (and so their rounding) does not depend on the threads' ranges.
+  const vtkIdType count = static_cast<vtkIdType>(input.Count);
+  vtkSMPTools::For(0, (count + 7) / 8,
     [&](vtkIdType begin, vtkIdType end)
     {
-      EvaluateViewColors(input.Positions, input.SphericalHarmonics, stride, degree, key, begin,
-        end, internal.ViewColors.data());
+      EvaluateViewColors(input.Positions, input.SphericalHarmonics, count, stride, degree, key,
+        8 * begin, std::min(8 * end, count), internal.ViewColors.data());
     });
   internal.ViewDegree = degree;
   internal.ViewKey = key;

@@ -3,7 +3,9 @@
 // footprints against the exact integral along pixel rays, the Jacobian against finite
 // differences, the voxel kernels' partition of unity, scale + quaternion against covariance,
 // the near plane and degenerate kernels, list selection, the optical model on a slab,
-// determinism across thread counts, and spherical-harmonic colors per view point.
+// determinism across thread counts, spherical-harmonic colors per view point, and the
+// per-pixel loops' exponentials.
+#include "SplatFloat8.h"
 #include "SplatVolumeKernel.h"
 #include "vtkVolumeSplatRasterizer.h"
 
@@ -14,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -262,6 +265,44 @@ vtkVolumeSplatRasterizer::Camera LookAt(const glm::dvec3& eye, const glm::dmat4&
   camera.Viewport = glm::ivec2(Viewport);
   return camera;
 }
+}
+
+TEST(SplatVolumeKernel, ExponentialsKeepTheirBounds)
+{
+  // Scalar and per lane, against the C library's exp in double, on a grid that crosses each
+  // rounding boundary of the polynomials' arguments.
+  alignas(32) float x[8];
+  alignas(32) float e[8];
+  alignas(32) float e2[8];
+  for (double start = 0.0; start < 120.0; start += 8.0 * 0.0137)
+  {
+    for (int lane = 0; lane < 8; ++lane)
+    {
+      x[lane] = static_cast<float>(start + 0.0137 * lane);
+    }
+    splat::Float8::NegativeExponential(splat::Float8::Load(x)).Store(e);
+    splat::Float8::NegativeExponential2(splat::Float8::Load(x)).Store(e2);
+    for (int lane = 0; lane < 8; ++lane)
+    {
+      const double exact = std::exp(-static_cast<double>(x[lane]));
+      const double exact2 = std::exp2(-static_cast<double>(x[lane]));
+      EXPECT_FLOAT_EQ(splat::NegativeExponential(x[lane]), e[lane]);
+      EXPECT_FLOAT_EQ(splat::NegativeExponential2(x[lane]), e2[lane]);
+      if (x[lane] < 87.0f)
+      {
+        // The rounding of x log2(e) grows with x: 6e-7 below 10, 4e-6 up to 87 without FMA.
+        EXPECT_NEAR(e[lane] / exact, 1.0, x[lane] < 10.0f ? 1e-6 : 5e-6)
+          << "exp(-" << x[lane] << ")";
+      }
+      EXPECT_NEAR(e2[lane] / exact2, 1.0, 3e-6) << "2^-" << x[lane];
+    }
+  }
+  EXPECT_EQ(splat::NegativeExponential(100.0f), 0.0f);
+  EXPECT_EQ(splat::NegativeExponential(std::numeric_limits<float>::infinity()), 0.0f);
+  for (const float large : { 1000.0f, std::numeric_limits<float>::infinity(), std::nanf("") })
+  {
+    EXPECT_NEAR(splat::NegativeExponential2(large) / std::exp2(-126.0), 1.0, 3e-6) << large;
+  }
 }
 
 TEST(VolumeSplatRasterizer, SlabOpacityFollowsTheOpticalModel)
