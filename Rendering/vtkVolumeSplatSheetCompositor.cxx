@@ -221,7 +221,9 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
   const glm::dvec2 tileSize = (extent + 1.0) / static_cast<double>(Tiles);
   l.TileScale = glm::vec2(1.0 / tileSize);
   std::vector<glm::dmat2> lattices(static_cast<std::size_t>(layers) * Tiles * Tiles);
-  std::vector<double> pixelsPerUnit(lattices.size()); // the largest stretch from sheet to screen
+  // The front sheet's largest stretch from sheet to screen, in pixels per lattice unit.
+  const int front = l.Ascending ? 0 : layers - 1;
+  double finest = 0.0;
   for (std::size_t f = 0; f < lattices.size(); ++f)
   {
     const int layer = static_cast<int>(f / (Tiles * Tiles));
@@ -255,21 +257,21 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
       return false;
     }
     const glm::dmat2 pixelsToSheet = glm::inverse(sheetToPixels);
-    pixelsPerUnit[f] =
-      std::sqrt(splat::LargestEigenvalue(glm::transpose(sheetToPixels) * sheetToPixels));
+    if (layer == front)
+    {
+      finest = std::max(finest,
+        std::sqrt(splat::LargestEigenvalue(glm::transpose(sheetToPixels) * sheetToPixels)));
+    }
     lattice += pixelsToSheet * glm::transpose(pixelsToSheet);
   }
   // The intermediate image's pixels per lattice unit of the front sheet: SamplesPerSigma along
   // the narrowest footprint there, so that the warp follows the footprints' shape, and
   // SamplesPerPixel along the screen's finest stretch of the sheet.
   double narrowest = std::numeric_limits<double>::infinity();
-  double finest = 0.0;
-  const int front = l.Ascending ? 0 : layers - 1;
   for (int tile = 0; tile < Tiles * Tiles; ++tile)
   {
     const glm::dmat2& f = lattices[front * Tiles * Tiles + tile];
     narrowest = std::min(narrowest, f[0][0] + f[1][1] - splat::LargestEigenvalue(f));
-    finest = std::max(finest, pixelsPerUnit[front * Tiles * Tiles + tile]);
   }
   l.Resolution = std::max(SamplesPerSigma / std::sqrt(narrowest), SamplesPerPixel * finest);
   if (!std::isfinite(l.Resolution))
