@@ -260,6 +260,139 @@ SPLAT_ALWAYS_INLINE void MakeCaptureFootprints(const CaptureFrame& frame, Captur
 }
 
 /**
+ * The per-pixel order of StopThePop (Radl et al. 2024): each pixel orders the kernels it sees by
+ * the depth along its ray at which their density peaks, not by their centers' depths. On the ray
+ * o + t d of splat::PixelRays (t the eye depth) a kernel of eye center mu and eye covariance V
+ * peaks at t = d^T A (mu - o) / d^T A d, with A = adj(V): V's inverse up to its determinant,
+ * which cancels, so that flat kernels (V singular) have one too (where the ray crosses their
+ * plane). Over a footprint, in the pixel offsets (x, y) from its center, t is
+ * (N0 + NX x + NY y) / (D0 + DX x + DY y + DXX x^2 + DXY x y + DYY y^2): the numerator has no
+ * quadratic terms because perspective rays share their origin and parallel ones their
+ * direction. A kernel whose denominator at its center is negligible (a needle, A nearly zero, or
+ * a flat kernel seen edge-on) keeps its center's depth: N0 = Depth, D0 = 1, the rest zero.
+ */
+struct RayDepthLanes
+{
+  Float8 N0, NX, NY;
+  Float8 D0, DX, DY, DXX, DXY, DYY;
+};
+
+/// splat::PixelRays in float, for MakeRayDepths: per column A, B, C of the affine maps.
+struct CaptureRays
+{
+  float Origin[3][3];
+  float Direction[3][3];
+
+  explicit CaptureRays(const PixelRays& rays)
+  {
+    for (int column = 0; column < 3; ++column)
+    {
+      for (int row = 0; row < 3; ++row)
+      {
+        this->Origin[column][row] = static_cast<float>(rays.Origin[column][row]);
+        this->Direction[column][row] = static_cast<float>(rays.Direction[column][row]);
+      }
+    }
+  }
+};
+
+/**
+ * The ray depths of RayDepthLanes for eight kernels whose footprints MakeCaptureFootprints
+ * made (read: Eye, Covariance, CenterX, CenterY, Depth).
+ */
+SPLAT_ALWAYS_INLINE RayDepthLanes MakeRayDepths(
+  const CaptureRays& rays, const CaptureFrame& frame, const CaptureLanes& k)
+{
+  const auto dot = [](const Float8* a, const Float8* b) SPLAT_INLINE_LAMBDA
+  { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  // The eye covariance V = R S R^T, R = frame.ToEye, S the lanes' covariances.
+  const Float8* c = k.Covariance;
+  const Float8 S[3][3] = { { c[0], c[1], c[2] }, { c[1], c[3], c[4] }, { c[2], c[4], c[5] } };
+  Float8 RS[3][3];
+  for (int row = 0; row < 3; ++row)
+  {
+    for (int column = 0; column < 3; ++column)
+    {
+      RS[row][column] = S[0][column] * frame.ToEye[0][row] +
+        S[1][column] * frame.ToEye[1][row] + S[2][column] * frame.ToEye[2][row];
+    }
+  }
+  Float8 V[3][3];
+  for (int row = 0; row < 3; ++row)
+  {
+    for (int column = row; column < 3; ++column)
+    {
+      V[row][column] = RS[row][0] * frame.ToEye[0][column] +
+        RS[row][1] * frame.ToEye[1][column] + RS[row][2] * frame.ToEye[2][column];
+      V[column][row] = V[row][column];
+    }
+  }
+  // A = adj(V), symmetric.
+  Float8 A[3][3];
+  A[0][0] = V[1][1] * V[2][2] - V[1][2] * V[1][2];
+  A[0][1] = V[0][2] * V[1][2] - V[0][1] * V[2][2];
+  A[0][2] = V[0][1] * V[1][2] - V[0][2] * V[1][1];
+  A[1][1] = V[0][0] * V[2][2] - V[0][2] * V[0][2];
+  A[1][2] = V[0][1] * V[0][2] - V[0][0] * V[1][2];
+  A[2][2] = V[0][0] * V[1][1] - V[0][1] * V[0][1];
+  A[1][0] = A[0][1];
+  A[2][0] = A[0][2];
+  A[2][1] = A[1][2];
+  const auto times = [&A](const Float8* v, Float8* out) SPLAT_INLINE_LAMBDA
+  {
+    for (int row = 0; row < 3; ++row)
+    {
+      out[row] = A[row][0] * v[0] + A[row][1] * v[1] + A[row][2] * v[2];
+    }
+  };
+  // The ray maps' columns per lane: A and B constant, C moved to the footprint's center.
+  Float8 dA[3], dB[3], dC[3], oA[3], oB[3], toCenter[3];
+  for (int row = 0; row < 3; ++row)
+  {
+    dA[row] = Float8(rays.Direction[0][row]);
+    dB[row] = Float8(rays.Direction[1][row]);
+    dC[row] = k.CenterX * rays.Direction[0][row] + k.CenterY * rays.Direction[1][row] +
+      rays.Direction[2][row];
+    oA[row] = Float8(rays.Origin[0][row]);
+    oB[row] = Float8(rays.Origin[1][row]);
+    toCenter[row] = k.Eye[row] -
+      (k.CenterX * rays.Origin[0][row] + k.CenterY * rays.Origin[1][row] + rays.Origin[2][row]);
+  }
+  Float8 AtoCenter[3], AoA[3], AoB[3], AdA[3], AdB[3], AdC[3];
+  times(toCenter, AtoCenter);
+  times(oA, AoA);
+  times(oB, AoB);
+  times(dA, AdA);
+  times(dB, AdB);
+  times(dC, AdC);
+  RayDepthLanes r;
+  r.N0 = dot(dC, AtoCenter);
+  r.NX = dot(dA, AtoCenter) - dot(dC, AoA);
+  r.NY = dot(dB, AtoCenter) - dot(dC, AoB);
+  r.D0 = dot(dC, AdC);
+  r.DX = 2.0f * dot(dA, AdC);
+  r.DY = 2.0f * dot(dB, AdC);
+  r.DXX = dot(dA, AdA);
+  r.DXY = 2.0f * dot(dA, AdB);
+  r.DYY = dot(dB, AdB);
+  // Negligible: below 1e-6 of what a kernel of the same trace seen face-on would have.
+  const Float8 negligible = 1e-6f * (A[0][0] + A[1][1] + A[2][2]) * dot(dC, dC);
+  // 1 where the ray depths hold (NaN and infinity fail the second test), 0 where the lane
+  // keeps its center's depth.
+  const Float8 held =
+    Float8::SelectLess(negligible, r.D0, Float8::SelectLess(r.D0, 3e38f, 1.0f, 0.0f), 0.0f);
+  const auto keep = [&held](Float8& value, const Float8& center) SPLAT_INLINE_LAMBDA
+  { value = Float8::SelectLess(held, 0.5f, center, value); };
+  keep(r.N0, k.Depth);
+  keep(r.D0, 1.0f);
+  for (Float8* zeroed : { &r.NX, &r.NY, &r.DX, &r.DY, &r.DXX, &r.DXY, &r.DYY })
+  {
+    keep(*zeroed, 0.0f);
+  }
+  return r;
+}
+
+/**
  * A float's bits as an unsigned key of the same order (negative floats included).
  */
 inline std::uint32_t SortKey(float value)

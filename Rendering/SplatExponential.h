@@ -8,9 +8,8 @@
  * 2^t = 2^n 2^f with n = round(t) and |f| <= 1/2; 2^f by its Taylor polynomial of degree 6,
  * whose remainder (ln 2 / 2)^7 / 7! is 1.2e-7 relative, within one float rounding; the rounding
  * of t = x log2(e) adds an error that grows with x (measured: 6e-7 relative below x = 10, 4e-6
- * up to 87). The result
- * is exactly 0 beyond x = 87 (below the smallest normal float) and for x = +inf; the caller
- * passes x >= 0 or x = NaN-free negatives down to -87.
+ * up to 87). The result is exactly 0 beyond x = 87 (below the smallest normal float) and for
+ * x = +inf; the caller passes x >= 0 or x = NaN-free negatives down to -87.
  *
  * NegativeExponential2, 2^-x, is the capture compositing's: its alphas end in 8 bits, so a
  * degree-4 polynomial (3e-6 relative) serves where float precision would take degree 6, and
