@@ -69,10 +69,9 @@ Options (a value follows as --name VALUE or --name=VALUE):
   --radius-scale F        vtkSurfelGenerator RadiusScale: splat radius / point spacing (default 1)
   --cutoff F              Cutoff on the kernel exponent (default: the mapper's, 1 for surface
                           splats, 4.5 for volumes)
-  --ordering auto|blended|clipped|single-axis|depth-sorted|pixel-sorted
+  --ordering auto|blended|clipped|single-axis|depth-sorted
                           volumes: vtkVolumeSplatMapper's visibility ordering (default auto:
-                          depth-sorted for captures, blended for density volumes;
-                          pixel-sorted: captures on the CPU, by depth along each pixel's ray)
+                          depth-sorted for captures, blended for density volumes)
   --footprint-filter auto|low-pass|dilation|antialiased
                           volumes: the screen filter of the footprints (default auto: the
                           0.3 px^2 dilation captures are trained with, EWA's 1 px^2 low-pass
@@ -297,8 +296,7 @@ inline Options ParseCommandLine(int argc, char* argv[])
             { "blended", vtkVolumeSplatMapper::BLENDED },
             { "clipped", vtkVolumeSplatMapper::CLIPPED },
             { "single-axis", vtkVolumeSplatMapper::SINGLE_AXIS },
-            { "depth-sorted", vtkVolumeSplatMapper::DEPTH_SORTED },
-            { "pixel-sorted", vtkVolumeSplatMapper::PIXEL_SORTED } });
+            { "depth-sorted", vtkVolumeSplatMapper::DEPTH_SORTED } });
       } },
     { "--footprint-filter",
       [&](const std::string& name, const std::string& value)

@@ -7,8 +7,8 @@
 // data folder when present (donut_fused.ply, fruit_drops_minimal.ply), each from the views of
 // splattest::CaptureViews. Per capture, setting and backend: the PSNR against the reference of
 // each view (the worst and the mean over the views) and the ms per frame (the mean over the
-// views of the mapper's time of the frames after the first). Then the popping of the depth and
-// per-pixel orders as the camera turns (MeasureTurns). Writes captures.csv and captures.md.
+// views of the mapper's time of the frames after the first). Writes captures.csv and
+// captures.md.
 #ifndef SplatReportCaptures_h
 #define SplatReportCaptures_h
 
@@ -52,138 +52,7 @@ inline std::vector<CaptureSetting> CaptureSettings()
     { "depth-sorted, low-pass", M::DEPTH_SORTED, M::LOW_PASS_FILTER },
     { "blended", M::BLENDED, M::AUTOMATIC_FILTER },
     { "clipped", M::CLIPPED, M::AUTOMATIC_FILTER },
-    { "single-axis", M::SINGLE_AXIS, M::AUTOMATIC_FILTER },
-    { "pixel-sorted", M::PIXEL_SORTED, M::AUTOMATIC_FILTER } };
-}
-
-// A capture in a render window of its own, drawn by vtkVolumeSplatMapper with a backend and
-// setting from views turned by `azimuth` degrees about their focal points: the image (RGB,
-// rows from the bottom), the reference camera of the render and the mean ms of the frames
-// after the first.
-struct CaptureImage
-{
-  std::vector<double> RGB;
-  splattest::ReferenceCamera Camera;
-  double Ms = 0.0;
-};
-
-class CaptureRenderer
-{
-public:
-  CaptureRenderer(vtkPointSet* data, int backend, const CaptureSetting& setting, int size)
-    : Size(size)
-  {
-    this->Window->SetOffScreenRendering(1);
-    this->Window->SetMultiSamples(0);
-    this->Window->SetSize(size, size);
-    this->Renderer->SetBackground(0.0, 0.0, 0.0);
-    this->Window->AddRenderer(this->Renderer);
-    this->Mapper->SetInputData(data);
-    this->Mapper->SetBackend(backend);
-    this->Mapper->SetOrderingMode(setting.Ordering);
-    this->Mapper->SetFootprintFilter(setting.Filter);
-    this->Volume->SetMapper(this->Mapper);
-    this->Volume->SetProperty(this->Property);
-    this->Renderer->AddVolume(this->Volume);
-  }
-
-  CaptureImage Draw(const splattest::CaptureView& view, int frames, double azimuth = 0.0)
-  {
-    vtkCamera* camera = this->Renderer->GetActiveCamera();
-    camera->SetPosition(view.Position.data());
-    camera->SetFocalPoint(view.FocalPoint.data());
-    camera->SetViewUp(view.Up.data());
-    camera->Azimuth(azimuth);
-    this->Renderer->ResetCameraClippingRange();
-    CaptureImage image;
-    for (int frame = 0; frame < frames; ++frame)
-    {
-      this->Window->Render();
-      image.Ms +=
-        frame > 0 ? this->Mapper->GetLastRenderTimeInMilliseconds() / (frames - 1) : 0.0;
-    }
-    image.RGB = splattest::ToRGB(splattest::Capture(this->Window));
-    image.Camera = splattest::ReferenceCameraOf(camera, this->Size, this->Size);
-    return image;
-  }
-
-private:
-  int Size;
-  vtkNew<vtkRenderWindow> Window;
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkVolumeSplatMapper> Mapper;
-  vtkNew<vtkVolumeProperty> Property;
-  vtkNew<vtkVolume> Volume;
-};
-
-// The popping table (see the file comment) of the captures on the CPU, the depth order against
-// the per-pixel order.
-inline std::string MeasureTurns(
-  const std::vector<splattest::CaptureScene>& captures, int size, int frames)
-{
-  using M = vtkVolumeSplatMapper;
-  constexpr int Steps = 10; // of a twentieth of a degree: half a degree
-  std::ostringstream table;
-  table << "| capture | order | pops per pixel and half degree (%) | mean change over half a "
-        << "degree | ms/frame |\n|---|---|---:|---:|---:|\n";
-  for (const splattest::CaptureScene& capture : captures)
-  {
-    std::cerr << "splat_report: captures, turns, " << capture.Name << std::endl;
-    for (const CaptureSetting& order :
-      { CaptureSetting{ "depth-sorted", M::DEPTH_SORTED, M::AUTOMATIC_FILTER },
-        CaptureSetting{ "pixel-sorted", M::PIXEL_SORTED, M::AUTOMATIC_FILTER } })
-    {
-      CaptureRenderer renderer(capture.Data, vtkSplatBackend::CPU, order, size);
-      double pops = 0.0, change = 0.0, ms = 0.0;
-      for (const splattest::CaptureView& view : capture.Views)
-      {
-        std::vector<std::vector<double>> images;
-        for (int step = 0; step <= Steps; ++step)
-        {
-          const CaptureImage image =
-            renderer.Draw(view, step == 0 ? frames : 1, 0.5 * step / Steps);
-          images.push_back(image.RGB);
-          ms += image.Ms;
-        }
-        const std::size_t values = images[0].size();
-        for (std::size_t p = 0; p < values; p += 3)
-        {
-          for (int step = 1; step < Steps; ++step)
-          {
-            double bend = 0.0;
-            for (std::size_t c = p; c < p + 3; ++c)
-            {
-              bend = std::max(bend,
-                std::abs(images[step - 1][c] - 2.0 * images[step][c] + images[step + 1][c]));
-            }
-            pops += bend > 0.1 ? 3.0 / values : 0.0;
-          }
-          for (std::size_t c = p; c < p + 3; ++c)
-          {
-            change += std::abs(images[Steps][c] - images[0][c]) / values;
-          }
-        }
-      }
-      const double views = static_cast<double>(capture.Views.size());
-      table << "| " << capture.Name << " | " << order.Name << " | "
-            << Fixed(100.0 * pops / views, 2) << " | " << Fixed(change / views, 4) << " | "
-            << Fixed(ms / views, 1) << " |\n";
-    }
-  }
-  std::ostringstream md;
-  md << "### popping as the camera turns\n\n"
-     << "The same captures and views on the CPU, each turned about its focal point by half a "
-     << "degree in " << Steps << " steps. A pixel pops at a step when its second difference "
-     << "I(k - 1) - 2 I(k) + I(k + 1) exceeds 0.1 in a channel: over such small steps a "
-     << "smooth change (the image moving by a fifth of a pixel a step) is nearly linear, while "
-     << "a Gaussian passing in front of another is a jump. The pops are counted over the steps "
-     << "per pixel; the mean change is that of a channel from the view to the view turned by "
-     << "half a degree. `pixel-sorted` orders each pixel's Gaussians by their depths along its "
-     << "ray (StopThePop), through a window of the last 32 kernels of each group of eight pixels. "
-     << "Means over the views; "
-     << "ms/frame as above.\n\n"
-     << table.str() << "\n";
-  return md.str();
+    { "single-axis", M::SINGLE_AXIS, M::AUTOMATIC_FILTER } };
 }
 
 // Measures the captures on the volume backends of `options`; writes captures.csv and
@@ -222,15 +91,41 @@ inline std::string MeasureCaptures(const Options& options)
         for (std::size_t v = 0; v < capture.Views.size(); ++v)
         {
           const splattest::CaptureView& view = capture.Views[v];
-          const CaptureImage image =
-            CaptureRenderer(capture.Data, backend, setting, Size).Draw(view, frames);
-          ms += image.Ms;
+          vtkNew<vtkRenderWindow> window;
+          window->SetOffScreenRendering(1);
+          window->SetMultiSamples(0);
+          window->SetSize(Size, Size);
+          vtkNew<vtkRenderer> renderer;
+          renderer->SetBackground(0.0, 0.0, 0.0);
+          window->AddRenderer(renderer);
+          vtkNew<vtkVolumeSplatMapper> mapper;
+          mapper->SetInputData(capture.Data);
+          mapper->SetBackend(backend);
+          mapper->SetOrderingMode(setting.Ordering);
+          mapper->SetFootprintFilter(setting.Filter);
+          vtkNew<vtkVolumeProperty> property;
+          vtkNew<vtkVolume> volume;
+          volume->SetMapper(mapper);
+          volume->SetProperty(property);
+          renderer->AddVolume(volume);
+          vtkCamera* camera = renderer->GetActiveCamera();
+          camera->SetPosition(view.Position.data());
+          camera->SetFocalPoint(view.FocalPoint.data());
+          camera->SetViewUp(view.Up.data());
+          renderer->ResetCameraClippingRange();
+          double viewMs = 0.0;
+          for (int frame = 0; frame < frames; ++frame)
+          {
+            window->Render();
+            viewMs += frame > 0 ? mapper->GetLastRenderTimeInMilliseconds() : 0.0;
+          }
+          ms += viewMs / (frames - 1);
           if (references.size() <= v)
           {
-            references.push_back(
-              splattest::RenderReference(capture.Data, image.Camera, capture.Degree));
+            references.push_back(splattest::RenderReference(capture.Data,
+              splattest::ReferenceCameraOf(camera, Size, Size), capture.Degree));
           }
-          const double psnr = splattest::PSNR(image.RGB, references[v]);
+          const double psnr = splattest::PSNR(splattest::ToRGB(splattest::Capture(window)), references[v]);
           worst = std::min(worst, psnr);
           sum += psnr;
         }
@@ -244,7 +139,6 @@ inline std::string MeasureCaptures(const Options& options)
       }
     }
   }
-  const std::string turns = MeasureTurns(captures, Size, frames);
   const std::string csvPath = options.OutputDir + "/captures.csv";
   std::ofstream file(csvPath);
   file << csv.str();
@@ -263,7 +157,7 @@ inline std::string MeasureCaptures(const Options& options)
      << "same (trained) reference, so their PSNR is what they change, not an error. ms/frame: "
      << "the mapper's time, the mean over the views of " << frames - 1 << " frames after the "
      << "first. `captures.csv` has the figures.\n\n"
-     << table.str() << "\n" << turns;
+     << table.str() << "\n";
   std::ofstream mdFile(options.OutputDir + "/captures.md");
   mdFile << md.str();
   return md.str();

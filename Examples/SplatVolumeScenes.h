@@ -74,8 +74,7 @@ inline std::vector<int> ChosenSplatBackends(const std::vector<std::string>& name
   return backends;
 }
 
-/// "blended", "clipped", "single-axis", "depth-sorted", "pixel-sorted": vtkVolumeSplatMapper's
-/// ordering modes.
+/// "blended", "clipped", "single-axis", "depth-sorted": vtkVolumeSplatMapper's ordering modes.
 inline const char* OrderingModeName(int mode)
 {
   switch (mode)
@@ -90,8 +89,6 @@ inline const char* OrderingModeName(int mode)
       return "depth-sorted";
     case vtkVolumeSplatMapper::AUTOMATIC:
       return "auto";
-    case vtkVolumeSplatMapper::PIXEL_SORTED:
-      return "pixel-sorted";
     default:
       return "?";
   }

@@ -98,46 +98,6 @@ struct TileRange
   std::uint16_t X0, X1, Y0, Y1;
 };
 
-// A kept kernel's depth along the rays of its pixels (splat::RayDepthLanes), for the
-// per-pixel order.
-struct RayDepth
-{
-  float N0, NX, NY;
-  float D0, DX, DY, DXX, DXY, DYY;
-};
-
-// The per-pixel order passes each group's kernels through a window of the last WindowSize that
-// reached the group, sorted per pixel by their depths along its ray (StopThePop's per-pixel
-// queue): the tile's kernels come in the order of their depths along the rays through the tile
-// (TileRayDepth), and a kernel entering a full window pushes out the window's nearest, which is
-// blended then. The window is a ring of slots, each a depth, an alpha and a color eight pixels
-// wide, the group's kernels entering at the back and moving forward past deeper entries, its
-// nearest leaving from the front. (On the donut capture a kernel still moves past nine entries
-// on average: the ring takes about as long as moving every slot of a sorted window of
-// sixteen.) A pixel the kernel does not reach takes an entry as deep as its back, of no alpha.
-// A pixel stops taking kernels once the ones blended and waiting in its window would take its
-// transmittance below the minimum, so that the kernels waiting in it do not delay its stop.
-constexpr int WindowSize = 32;
-static_assert((WindowSize & (WindowSize - 1)) == 0, "a ring's index wraps by a mask");
-constexpr int SlotFloats = 5 * Lanes;
-constexpr int WindowFloats = TileSize * Groups * WindowSize * SlotFloats;
-
-// A kernel's depth along the ray through the point of tile (x, y) nearest its center: the
-// order of its entry in the tile for the per-pixel order, which then has less to reorder than
-// from the centers' depths.
-float TileRayDepth(const ScreenSplat& s, const RayDepth& r, vtkIdType x, vtkIdType y)
-{
-  const auto offset = [](vtkIdType tile, float center)
-  {
-    const float first = static_cast<float>(tile * TileSize) + 0.5f;
-    return std::min(std::max(center, first), first + (TileSize - 1)) - center;
-  };
-  const float dx = offset(x, s.CenterX);
-  const float dy = offset(y, s.CenterY);
-  const float denominator = (r.DXX * dx + r.DXY * dy + r.DX) * dx + (r.DYY * dy + r.DY) * dy + r.D0;
-  return (r.N0 + r.NX * dx + r.NY * dy) / std::max(denominator, 1e-30f);
-}
-
 // How many kernels ahead the loops over a scattered order fetch their kernel.
 constexpr std::size_t PrefetchDistance = 8;
 
@@ -195,12 +155,10 @@ const ScreenSplat* KernelOf(const ScreenSplat* splats, std::uint64_t entry)
 // whose lower left pixel is (x0, y0). A pixel's transmittance is kept negated once it stops (and
 // from the start outside the image), so that one comparison per lane tells both; a group of
 // eight pixels of a row is skipped once all its pixels stop, a kernel once all its groups do,
-// and the tile ends when all do. PixelSorted: each pixel reorders the kernels by their depths
-// along its ray through its window (rayDepths, and `window`: WindowFloats floats).
-template <bool PixelSorted>
-SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const RayDepth* rayDepths,
-  const std::uint64_t* entries, std::size_t count, int x0, int y0, int width, int height,
-  const float* sceneDepths, float* window, glm::vec4* image)
+// and the tile ends when all do.
+SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const std::uint64_t* entries,
+  std::size_t count, int x0, int y0, int width, int height, const float* sceneDepths,
+  glm::vec4* image)
 {
   using splat::Float8;
   constexpr int Pixels = TileSize * TileSize;
@@ -238,42 +196,6 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const RayDepth
   const Float8 maximumAlpha(splat::CaptureMaximumAlpha);
   const Float8 minimumTransmittance(splat::CaptureMinimumTransmittance);
   const Float8 zero(0.0f);
-  // Blends a color of the given alphas under the pixels of group `bit`; false once they all
-  // stopped.
-  const auto blend = [&](int bit, const Float8& alpha, const Float8& r, const Float8& g,
-                       const Float8& b) SPLAT_INLINE_LAMBDA
-  {
-    const int p = bit * Lanes;
-    const Float8 t = Float8::Load(transmittance + p);
-    const Float8 next = t * (1.0f - alpha);
-    // A pixel whose transmittance would fall below the minimum stops before this kernel
-    // (stopped pixels hold their transmittance negated, so `next` is negative there).
-    const Float8 weight = Float8::SelectLess(next, minimumTransmittance, 0.0f, alpha * t);
-    const Float8 kept = Float8::SelectLess(next, minimumTransmittance, t.NegatedMagnitude(), next);
-    kept.Store(transmittance + p);
-    (Float8::Load(red + p) + weight * r).Store(red + p);
-    (Float8::Load(green + p) + weight * g).Store(green + p);
-    (Float8::Load(blue + p) + weight * b).Store(blue + p);
-    return Float8::AnyLess(zero, kept);
-  };
-  // PixelSorted: the window's slots start empty (nearest of all, so that they leave first, and
-  // transparent), and `pending` holds each pixel's transmittance after its window.
-  const Float8 empty = -std::numeric_limits<float>::infinity();
-  alignas(32) float pending[PixelSorted ? Pixels : 1];
-  if (PixelSorted)
-  {
-    for (int i = 0; i < WindowFloats; i += SlotFloats)
-    {
-      empty.Store(window + i);
-      std::fill_n(window + i + Lanes, SlotFloats - Lanes, 0.0f);
-    }
-    std::copy_n(transmittance, Pixels, pending);
-  }
-  // Per group, the slot at the front of its ring and how many of its slots were filled.
-  int heads[TileSize * Groups] = {};
-  int filled[TileSize * Groups] = {};
-  const auto slotOf = [window, &heads](int bit, int place)
-  { return window + (bit * WindowSize + ((heads[bit] + place) & (WindowSize - 1))) * SlotFloats; };
   for (std::size_t n = 0; n < count && open != 0; ++n)
   {
     // The tile's kernels come in depth order, not in memory order (near one another when the
@@ -314,12 +236,6 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const RayDepth
     // kernels with more than TestedGroups groups in the tile.
     alignas(32) float crossOf[TileSize]; // per row: the exponent's dx dy and dy^2 terms
     alignas(32) float rowTermOf[TileSize];
-    // PixelSorted, per row: the ray depth's numerator without its dx term, and its
-    // denominator's dx and constant terms.
-    alignas(32) float numeratorOf[TileSize];
-    alignas(32) float slopeOf[TileSize];
-    alignas(32) float denominatorOf[TileSize];
-    const RayDepth* ray = PixelSorted ? rayDepths + (entries[n] & 0xffffffffu) : nullptr;
     const bool tested = BitCount(candidates) > TestedGroups;
     GroupBits drawn = tested ? 0 : candidates;
     for (int y = 0; y < TileSize; y += Lanes)
@@ -334,12 +250,6 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const RayDepth
       const Float8 rowTerm = dy * s.ConicYY * dy;
       cross.Store(crossOf + y);
       rowTerm.Store(rowTermOf + y);
-      if (PixelSorted)
-      {
-        (dy * ray->NY + ray->N0).Store(numeratorOf + y);
-        (dy * ray->DXY + ray->DX).Store(slopeOf + y);
-        ((dy * ray->DYY + ray->DY) * dy + ray->D0).Store(denominatorOf + y);
-      }
       if (!tested)
       {
         continue;
@@ -351,8 +261,10 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const RayDepth
         {
           continue;
         }
+        // The group's first and last columns within the kernel's.
         const Float8 nearestFrom = static_cast<float>(std::max(g * Lanes, xa)) + offsetX;
-        const Float8 nearestTo = static_cast<float>(std::min(g * Lanes + Lanes - 1, xb)) + offsetX;
+        const Float8 nearestTo =
+          static_cast<float>(std::min(g * Lanes + Lanes - 1, xb)) + offsetX;
         Float8 nearest = Float8::SelectLess(lowest, nearestFrom, nearestFrom, lowest);
         nearest = Float8::SelectLess(nearestTo, nearest, nearestTo, nearest);
         const Float8 least = nearest * (nearest * s.ConicXX + cross) + rowTerm;
@@ -362,97 +274,36 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const RayDepth
     }
     drawn &= candidates;
     // The kernel's alphas over its drawn groups, blended under the pixels as they come (a pass
-    // of alphas before a pass of blending measured no faster), or passed through their windows.
+    // of alphas before a pass of blending measured no faster).
     for (; drawn != 0; drawn &= drawn - 1)
     {
       const int bit = LowestBit(drawn);
       const int y = bit % TileSize;
       const int g = bit / TileSize;
+      const int p = bit * Lanes;
       const Float8 q = dx[g] * (dx[g] * s.ConicXX + crossOf[y]) + rowTermOf[y];
       Float8 alpha = Float8::NegativeExponential2(q) * opacity[g];
       alpha = Float8::SelectLess(alpha, maximumAlpha, alpha, maximumAlpha);
       alpha = Float8::SelectLess(alpha, minimumAlpha, 0.0f, alpha);
       if (occludable)
       {
-        alpha = Float8::SelectLess(Float8::Load(scene + bit * Lanes), depth, 0.0f, alpha);
+        alpha = Float8::SelectLess(Float8::Load(scene + p), depth, 0.0f, alpha);
       }
-      if (!PixelSorted)
-      {
-        if (!blend(bit, alpha, s.Color[0], s.Color[1], s.Color[2]))
-        {
-          open &= ~(GroupBits{ 1 } << bit);
-        }
-        continue;
-      }
-      if (!Float8::AnyLess(zero, alpha))
-      {
-        continue;
-      }
-      // The kernel is taken where it adds something and leaves the pending transmittance
-      // above the minimum; the pixels where it would take it below stop taking kernels (their
-      // windows still drain).
-      const int p = bit * Lanes;
-      const Float8 waiting = Float8::Load(pending + p);
-      const Float8 nextPending = waiting * (1.0f - alpha);
-      alpha = Float8::SelectLess(nextPending, minimumTransmittance, 0.0f, alpha);
-      Float8::SelectLess(nextPending, minimumTransmittance,
-        Float8::SelectLess(zero, waiting, -1.0f, waiting), nextPending)
-        .Store(pending + p);
-      const Float8 denominator = (dx[g] * ray->DXX + slopeOf[y]) * dx[g] + denominatorOf[y];
-      const Float8 rayDepth = (dx[g] * ray->NX + numeratorOf[y]) /
-        Float8::SelectLess(denominator, 1e-30f, 1e-30f, denominator);
-      // The front leaves, and the kernel before it where it is nearer still.
-      float* front = slotOf(bit, 0);
-      const Float8 frontDepth = Float8::Load(front);
-      const Float8 taken = Float8::SelectLess(zero, alpha, 1.0f, 0.0f);
-      const Float8 before = Float8::SelectLess(rayDepth, frontDepth, taken, 0.0f);
-      blend(bit, alpha * before, s.Color[0], s.Color[1], s.Color[2]);
-      blend(bit, Float8::Load(front + Lanes), Float8::Load(front + 2 * Lanes),
-        Float8::Load(front + 3 * Lanes), Float8::Load(front + 4 * Lanes));
-      // The front's slot becomes the back: the kernel where it stays, else an entry of no
-      // alpha as deep as the back before it; then moved forward past deeper entries.
-      const Float8 stays = taken - before;
-      const Float8 backDepth = Float8::Load(slotOf(bit, WindowSize - 1));
-      Float8::SelectLess(stays, 0.5f, backDepth, rayDepth).Store(front);
-      (alpha * stays).Store(front + Lanes);
-      for (int c = 0; c < 3; ++c)
-      {
-        Float8(s.Color[c]).Store(front + (2 + c) * Lanes);
-      }
-      heads[bit] = (heads[bit] + 1) & (WindowSize - 1);
-      filled[bit] = std::min(filled[bit] + 1, WindowSize);
-      for (int place = WindowSize - 1; place > 0; --place)
-      {
-        float* back = slotOf(bit, place);
-        float* ahead = slotOf(bit, place - 1);
-        const Float8 backDepth = Float8::Load(back);
-        const Float8 aheadDepth = Float8::Load(ahead);
-        if (!Float8::AnyLess(backDepth, aheadDepth))
-        {
-          break;
-        }
-        for (int f = 0; f < 5; ++f)
-        {
-          const Float8 b = Float8::Load(back + f * Lanes);
-          const Float8 a = Float8::Load(ahead + f * Lanes);
-          Float8::SelectLess(backDepth, aheadDepth, b, a).Store(ahead + f * Lanes);
-          Float8::SelectLess(backDepth, aheadDepth, a, b).Store(back + f * Lanes);
-        }
-      }
-      if (!Float8::AnyLess(zero, Float8::Load(pending + p)))
+      const Float8 t = Float8::Load(transmittance + p);
+      const Float8 next = t * (1.0f - alpha);
+      // A pixel whose transmittance would fall below the minimum stops before this kernel
+      // (stopped pixels hold their transmittance negated, so `next` is negative there).
+      const Float8 weight = Float8::SelectLess(next, minimumTransmittance, 0.0f, alpha * t);
+      const Float8 kept =
+        Float8::SelectLess(next, minimumTransmittance, t.NegatedMagnitude(), next);
+      kept.Store(transmittance + p);
+      (Float8::Load(red + p) + weight * s.Color[0]).Store(red + p);
+      (Float8::Load(green + p) + weight * s.Color[1]).Store(green + p);
+      (Float8::Load(blue + p) + weight * s.Color[2]).Store(blue + p);
+      if (!Float8::AnyLess(zero, kept))
       {
         open &= ~(GroupBits{ 1 } << bit);
       }
-    }
-  }
-  // What the windows still hold, front to back.
-  for (int bit = 0; PixelSorted && bit < TileSize * Groups; ++bit)
-  {
-    for (int place = WindowSize - filled[bit]; place < WindowSize; ++place)
-    {
-      const float* slot = slotOf(bit, place);
-      blend(bit, Float8::Load(slot + Lanes), Float8::Load(slot + 2 * Lanes),
-        Float8::Load(slot + 3 * Lanes), Float8::Load(slot + 4 * Lanes));
     }
   }
   for (int y = 0; y < rows; ++y)
@@ -471,14 +322,12 @@ SPLAT_VECTOR_CLONES void CompositeTile(const ScreenSplat* splats, const RayDepth
 SPLAT_VECTOR_CLONES_INLINED void ProjectKernels(
   const vtkVolumeSplatRasterizer::Kernels& input, const float* colors,
   const vtkVolumeSplatRasterizer::Camera& camera, splat::FootprintFilter filter, vtkIdType begin,
-  vtkIdType end, ScreenSplat* splats, TileRange* ranges, splat::CaptureSkip* skips,
-  RayDepth* rayDepths)
+  vtkIdType end, ScreenSplat* splats, TileRange* ranges, splat::CaptureSkip* skips)
 {
   using splat::Float8;
   const glm::dvec2 viewport(std::max(camera.Viewport.x, 0), std::max(camera.Viewport.y, 0));
   const splat::CaptureFrame frame(
     camera.EyeToClip, viewport, glm::dmat3(camera.ModelToEye), filter);
-  const splat::CaptureRays rays(splat::MakePixelRays(camera.EyeToClip, viewport));
   const glm::dmat3& S = input.SharedCovariance;
   const float shared[6] = { static_cast<float>(S[0][0]), static_cast<float>(S[0][1]),
     static_cast<float>(S[0][2]), static_cast<float>(S[1][1]), static_cast<float>(S[1][2]),
@@ -531,17 +380,6 @@ SPLAT_VECTOR_CLONES_INLINED void ProjectKernels(
     {
       results[r]->Store(out[r]);
     }
-    alignas(32) float depths[9][8];
-    if (rayDepths)
-    {
-      const splat::RayDepthLanes d = splat::MakeRayDepths(rays, frame, k);
-      const Float8* terms[9] = { &d.N0, &d.NX, &d.NY, &d.D0, &d.DX, &d.DY, &d.DXX, &d.DXY,
-        &d.DYY };
-      for (int r = 0; r < 9; ++r)
-      {
-        terms[r]->Store(depths[r]);
-      }
-    }
     for (int lane = 0; lane < count; ++lane)
     {
       const vtkIdType i = first + lane;
@@ -562,12 +400,6 @@ SPLAT_VECTOR_CLONES_INLINED void ProjectKernels(
           static_cast<std::uint16_t>(box.y / TileSize),
           static_cast<std::uint16_t>(box.z / TileSize),
           static_cast<std::uint16_t>(box.w / TileSize) };
-        if (rayDepths)
-        {
-          rayDepths[i] = RayDepth{ depths[0][lane], depths[1][lane], depths[2][lane],
-            depths[3][lane], depths[4][lane], depths[5][lane], depths[6][lane], depths[7][lane],
-            depths[8][lane] };
-        }
       }
       else
       {
@@ -584,7 +416,6 @@ struct vtkGaussianSplatRasterizer::Internals
   std::vector<ScreenSplat> Splats;
   std::vector<TileRange> Ranges;
   std::vector<splat::CaptureSkip> Skips;
-  std::vector<RayDepth> RayDepths; // PixelSorted only
   // Per tile, its entries (splat::DepthOrderKey of depth and id): TileOffsets[t] to
   // TileOffsets[t + 1].
   std::vector<std::size_t> TileOffsets;
@@ -633,13 +464,11 @@ void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels&
   internal.Splats.resize(n);
   internal.Ranges.resize(n);
   internal.Skips.resize(n);
-  internal.RayDepths.resize(this->PixelSorted ? n : 0);
-  RayDepth* rayDepths = this->PixelSorted ? internal.RayDepths.data() : nullptr;
   vtkSMPTools::For(0, n,
     [&](vtkIdType begin, vtkIdType end)
     {
       ProjectKernels(input, colors, camera, this->FootprintFilter, begin, end,
-        internal.Splats.data(), internal.Ranges.data(), internal.Skips.data(), rayDepths);
+        internal.Splats.data(), internal.Ranges.data(), internal.Skips.data());
     });
 
   for (const splat::CaptureSkip skip : internal.Skips)
@@ -708,11 +537,8 @@ void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels&
         forEachEntry(c,
           [&](vtkIdType i, vtkIdType tile)
           {
-            const float depth = rayDepths
-              ? TileRayDepth(internal.Splats[i], rayDepths[i], tile % tilesX, tile / tilesX)
-              : internal.Ranges[i].Depth;
             internal.TileEntries[place[tile]++] =
-              splat::DepthOrderKey(depth, static_cast<std::uint32_t>(i));
+              splat::DepthOrderKey(internal.Ranges[i].Depth, static_cast<std::uint32_t>(i));
           });
       }
     });
@@ -722,18 +548,15 @@ void vtkGaussianSplatRasterizer::Render(const vtkVolumeSplatRasterizer::Kernels&
     [&](vtkIdType begin, vtkIdType end)
     {
       std::vector<std::uint64_t> scratch;
-      std::vector<float> window(rayDepths ? WindowFloats : 0);
-      const auto composite = rayDepths ? CompositeTile<true> : CompositeTile<false>;
       for (vtkIdType tile = begin; tile < end; ++tile)
       {
         std::uint64_t* first = internal.TileEntries.data() + internal.TileOffsets[tile];
         std::uint64_t* last = internal.TileEntries.data() + internal.TileOffsets[tile + 1];
         scratch.resize(std::max<std::size_t>(scratch.size(), last - first));
         SortByDepth(first, last - first, scratch.data());
-        composite(internal.Splats.data(), rayDepths, first, last - first,
+        CompositeTile(internal.Splats.data(), first, last - first,
           static_cast<int>(tile % tilesX) * TileSize,
-          static_cast<int>(tile / tilesX) * TileSize, width, height, sceneDepths, window.data(),
-          image.data());
+          static_cast<int>(tile / tilesX) * TileSize, width, height, sceneDepths, image.data());
       }
     });
 }
@@ -743,7 +566,6 @@ void vtkGaussianSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FootprintFilter: " << static_cast<int>(this->FootprintFilter) << "\n";
-  os << indent << "PixelSorted: " << (this->PixelSorted ? "On" : "Off") << "\n";
   os << indent << "ProjectedCount: " << this->ProjectedCount << "\n";
   os << indent << "NearPlaneCount: " << this->NearPlaneCount << "\n";
   os << indent << "OutsideViewCount: " << this->OutsideViewCount << "\n";

@@ -51,21 +51,6 @@ public:
   splat::FootprintFilter GetFootprintFilter() const { return this->FootprintFilter; }
   ///@}
 
-  ///@{
-  /**
-   * Whether each pixel orders the kernels by the depth along its ray at which their density
-   * peaks (StopThePop's per-pixel order: Radl et al., "StopThePop: Sorted Gaussian Splatting
-   * for View-Consistent Real-time Rendering", 2024) rather than by their centers' depths, so
-   * that kernels do not pop in front of one another as the camera turns. The kernels still
-   * reach each pixel in the order of their centers; a window of the last eight per pixel,
-   * sorted by their ray depths, reorders them: two kernels farther apart than that in the
-   * center order keep it. Default off: the order captures were trained with.
-   */
-  vtkSetMacro(PixelSorted, bool);
-  vtkGetMacro(PixelSorted, bool);
-  vtkBooleanMacro(PixelSorted, bool);
-  ///@}
-
   /**
    * Draws `kernels` (their Strengths the peak opacities) with `colors`
    * (RGB per kernel for this view) into `image`: premultiplied RGBA per pixel, row by row from
@@ -93,7 +78,6 @@ protected:
   ~vtkGaussianSplatRasterizer() override;
 
   splat::FootprintFilter FootprintFilter = splat::FootprintFilter::Dilation;
-  bool PixelSorted = false;
   vtkIdType ProjectedCount = 0;
   vtkIdType NearPlaneCount = 0;
   vtkIdType OutsideViewCount = 0;

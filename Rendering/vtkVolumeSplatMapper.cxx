@@ -361,7 +361,7 @@ vtkVolumeSplatMapper::~vtkVolumeSplatMapper()
 //------------------------------------------------------------------------------
 void vtkVolumeSplatMapper::SetOrderingMode(int mode)
 {
-  mode = std::min(std::max(mode, static_cast<int>(BLENDED)), static_cast<int>(PIXEL_SORTED));
+  mode = std::min(std::max(mode, static_cast<int>(BLENDED)), static_cast<int>(AUTOMATIC));
   if (mode != this->OrderingMode)
   {
     this->OrderingMode = mode;
@@ -1070,16 +1070,9 @@ void vtkVolumeSplatMapper::Render(vtkRenderer* ren, vtkVolume* volume)
   this->LastBackend = this->SelectBackend(ren);
   // The automatic settings follow the kind of kernels: captures are drawn as they were trained.
   const bool capture = this->Kernels->View.PeakOpacity;
-  int mode = this->OrderingMode != AUTOMATIC ? this->OrderingMode
-                                              : (capture ? DEPTH_SORTED : BLENDED);
-  // The per-pixel order is the CPU capture rasterizer's: elsewhere the depth order it refines.
-  if (mode == PIXEL_SORTED && !(capture && this->LastBackend == vtkSplatBackend::CPU))
-  {
-    mode = DEPTH_SORTED;
-  }
-  this->LastOrderingMode = mode;
-  this->Rasterizer->SetOrderingMode(mode == PIXEL_SORTED ? DEPTH_SORTED : mode);
-  this->Rasterizer->SetPixelSorted(mode == PIXEL_SORTED);
+  this->LastOrderingMode = this->OrderingMode != AUTOMATIC ? this->OrderingMode
+                                                           : (capture ? DEPTH_SORTED : BLENDED);
+  this->Rasterizer->SetOrderingMode(this->LastOrderingMode);
   this->Rasterizer->SetFootprintFilter(this->FootprintFilter != AUTOMATIC_FILTER
       ? this->FootprintFilter
       : (capture ? DILATION_FILTER : LOW_PASS_FILTER));

@@ -142,8 +142,7 @@ public:
     CLIPPED = 1,      ///< each pixel from the list of its ray's dominant axis
     SINGLE_AXIS = 2,  ///< one list per frame, the central ray's (Westover)
     DEPTH_SORTED = 3, ///< a global per-frame sort by eye-space depth
-    AUTOMATIC = 4,    ///< DEPTH_SORTED for captures, BLENDED for density kernels (default)
-    PIXEL_SORTED = 5  ///< captures on the CPU: each pixel's order by depth along its ray
+    AUTOMATIC = 4     ///< DEPTH_SORTED for captures, BLENDED for density kernels (default)
   };
 
   ///@{
@@ -154,12 +153,6 @@ public:
    * rules of their rasterizer on the CPU: vtkGaussianSplatRasterizer), density kernels (image
    * data, sparse grids, kernels through transfer functions) take the three axis lists blended
    * per pixel (BLENDED). GetLastOrderingMode says which ran.
-   *
-   * PIXEL_SORTED refines the depth order of captures per pixel, by the depth along the
-   * pixel's ray at which each kernel's density peaks (StopThePop; see
-   * vtkGaussianSplatRasterizer::SetPixelSorted): kernels no longer pop in front of one another
-   * as the camera turns, at a cost per frame (docs/report: the capture table). It is the CPU
-   * backend's; the OpenGL backend, and density kernels, draw DEPTH_SORTED instead.
    */
   void SetOrderingMode(int mode);
   vtkGetMacro(OrderingMode, int);
@@ -168,7 +161,6 @@ public:
   void SetOrderingModeToClipped() { this->SetOrderingMode(CLIPPED); }
   void SetOrderingModeToSingleAxis() { this->SetOrderingMode(SINGLE_AXIS); }
   void SetOrderingModeToDepthSorted() { this->SetOrderingMode(DEPTH_SORTED); }
-  void SetOrderingModeToPixelSorted() { this->SetOrderingMode(PIXEL_SORTED); }
   ///@}
 
   /**

@@ -786,7 +786,6 @@ void vtkVolumeSplatRasterizer::RenderCaptures(const Camera& camera)
 {
   vtkGaussianSplatRasterizer* captures = this->Internal->Captures;
   captures->SetFootprintFilter(static_cast<splat::FootprintFilter>(this->FootprintFilter));
-  captures->SetPixelSorted(this->PixelSorted);
   const std::vector<float> sceneEyeDepths = this->SceneEyeDepths(camera);
   captures->Render(this->Input, this->FrameColors(camera), camera,
     sceneEyeDepths.empty() ? nullptr : sceneEyeDepths.data(), this->Internal->Buffers[DepthList]);
@@ -896,7 +895,6 @@ void vtkVolumeSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "OrderingMode: " << this->OrderingMode << "\n";
-  os << indent << "PixelSorted: " << (this->PixelSorted ? "On" : "Off") << "\n";
   os << indent << "BlendThreshold: " << this->BlendThreshold << "\n";
   os << indent << "Cutoff: " << this->Cutoff << "\n";
   os << indent << "FootprintFilter: " << this->FootprintFilter << "\n";

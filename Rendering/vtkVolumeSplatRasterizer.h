@@ -104,15 +104,6 @@ public:
 
   ///@{
   /**
-   * Whether captures in the DEPTH_SORTED ordering are reordered per pixel by their depths along
-   * its ray (vtkGaussianSplatRasterizer::SetPixelSorted). Default off.
-   */
-  vtkSetMacro(PixelSorted, bool);
-  vtkGetMacro(PixelSorted, bool);
-  ///@}
-
-  ///@{
-  /**
    * Cutoff on the footprint exponent. Default splat::DefaultVolumeCutoff (4.5).
    */
   vtkSetClampMacro(Cutoff, double, 1e-3, 50.0);
@@ -322,7 +313,6 @@ protected:
   double BlendThreshold = 0.85;
   double Cutoff;
   int FootprintFilter = 0;
-  bool PixelSorted = false;
   int MaximumSphericalHarmonicsDegree = 3;
   bool SheetResampling = true;
   bool SheetMerging = true;

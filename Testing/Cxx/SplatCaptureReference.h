@@ -26,12 +26,6 @@
  *   reference clamps below only; the mapper clamps both ways);
  * - the background black.
  *
- * With `pixelSorted`, each pixel instead takes its Gaussians in the order of the depth along its
- * ray at which their density peaks (StopThePop, Radl et al. 2024: on the ray t d from the eye,
- * d = ((u - cx) / fx, (v - cy) / fy, 1), the peak is at t = d^T Sigma^-1 m / d^T Sigma^-1 d for
- * a Gaussian of view center m and view covariance Sigma; ties in the order above), every
- * pixel's whole list sorted (vtkGaussianSplatRasterizer's window of eight approximates it).
- *
  * From a VTK camera (RenderReference): the view is diag(1, -1, -1) times VTK's eye coordinates
  * (x right, y up, z backwards); VTK's view angle is the vertical field of view, the horizontal
  * one follows from the aspect ratio; VTK's rows count from the bottom, so reference row v is
@@ -141,7 +135,7 @@ inline void ReferenceColor(const double* sh, int degree, double x, double y, dou
  * antialiased mode).
  */
 inline std::vector<double> RenderReference(vtkPointSet* capture, const ReferenceCamera& cam,
-  int degree, double dilation = 0.3, bool compensate = false, bool pixelSorted = false)
+  int degree, double dilation = 0.3, bool compensate = false)
 {
   vtkPointData* pd = capture->GetPointData();
   vtkDataArray* scales = pd->GetArray("Scale");
@@ -156,8 +150,6 @@ inline std::vector<double> RenderReference(vtkPointSet* capture, const Reference
   struct Projected
   {
     double U, V, A, B, C, Opacity, Depth, Radius, Rgb[3];
-    double Center[3];          // in view coordinates
-    double InverseSigma[3][3]; // the view covariance's inverse times its determinant
   };
   std::vector<Projected> gaussians;
   const vtkIdType n = capture->GetNumberOfPoints();
@@ -234,31 +226,6 @@ inline std::vector<double> RenderReference(vtkPointSet* capture, const Reference
       continue;
     }
     Projected g;
-    // The view covariance R Sigma R^T and its adjugate, for the ray depths.
-    double view[3][3];
-    for (int r = 0; r < 3; ++r)
-    {
-      g.Center[r] = t[r];
-      for (int c = 0; c < 3; ++c)
-      {
-        view[r][c] = 0.0;
-        for (int k = 0; k < 3; ++k)
-        {
-          for (int l = 0; l < 3; ++l)
-          {
-            view[r][c] += cam.R[r][k] * sigma[k][l] * cam.R[c][l];
-          }
-        }
-      }
-    }
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
-        g.InverseSigma[r][c] = view[r1][c1] * view[r2][c2] - view[r1][c2] * view[r2][c1];
-      }
-    }
     g.A = cov[1][1] / det;
     g.B = -cov[0][1] / det;
     g.C = cov[0][0] / det;
@@ -285,31 +252,10 @@ inline std::vector<double> RenderReference(vtkPointSet* capture, const Reference
   std::stable_sort(gaussians.begin(), gaussians.end(),
     [](const Projected& a, const Projected& b) { return a.Depth < b.Depth; });
 
-  // Front to back, each Gaussian over the pixels of its rectangle; pixelSorted, each pixel's
-  // contributions are kept, sorted by their ray depths and blended after.
+  // Front to back, each Gaussian over the pixels of its rectangle.
   std::vector<double> transmittance(static_cast<std::size_t>(W) * H, 1.0);
   std::vector<bool> done(transmittance.size(), false);
   std::vector<double> rgb(3 * transmittance.size(), 0.0);
-  const auto blend = [&](std::size_t pixel, double alpha, const double* color)
-  {
-    const double next = transmittance[pixel] * (1.0 - alpha);
-    if (next < 1e-4)
-    {
-      done[pixel] = true;
-      return;
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-      rgb[3 * pixel + c] += color[c] * alpha * transmittance[pixel];
-    }
-    transmittance[pixel] = next;
-  };
-  struct Contribution
-  {
-    double RayDepth, Alpha;
-    const double* Rgb;
-  };
-  std::vector<std::vector<Contribution>> contributions(pixelSorted ? transmittance.size() : 0);
   for (const Projected& g : gaussians)
   {
     const int u0 = std::max(0, static_cast<int>(std::ceil(g.U - g.Radius)));
@@ -336,35 +282,17 @@ inline std::vector<double> RenderReference(vtkPointSet* capture, const Reference
         {
           continue;
         }
-        if (!pixelSorted)
+        const double next = transmittance[pixel] * (1.0 - alpha);
+        if (next < 1e-4)
         {
-          blend(pixel, alpha, g.Rgb);
+          done[pixel] = true;
           continue;
         }
-        const double d[3] = { (u - (0.5 * W - 0.5)) / fx, (v - (0.5 * H - 0.5)) / fy, 1.0 };
-        double dS[3];
         for (int c = 0; c < 3; ++c)
         {
-          dS[c] = d[0] * g.InverseSigma[0][c] + d[1] * g.InverseSigma[1][c] +
-            d[2] * g.InverseSigma[2][c];
+          rgb[3 * pixel + c] += g.Rgb[c] * alpha * transmittance[pixel];
         }
-        const double across = dS[0] * d[0] + dS[1] * d[1] + dS[2] * d[2];
-        const double along = dS[0] * g.Center[0] + dS[1] * g.Center[1] + dS[2] * g.Center[2];
-        contributions[pixel].push_back(
-          { across > 0.0 ? along / across : g.Depth, alpha, g.Rgb });
-      }
-    }
-  }
-  for (std::size_t pixel = 0; pixel < contributions.size(); ++pixel)
-  {
-    std::vector<Contribution>& list = contributions[pixel];
-    std::stable_sort(list.begin(), list.end(),
-      [](const Contribution& a, const Contribution& b) { return a.RayDepth < b.RayDepth; });
-    for (const Contribution& c : list)
-    {
-      if (!done[pixel])
-      {
-        blend(pixel, c.Alpha, c.Rgb);
+        transmittance[pixel] = next;
       }
     }
   }

@@ -12,11 +12,6 @@
 // - the defaults resolve to DEPTH_SORTED and the dilation for captures, to BLENDED for image
 //   data;
 // - the same image for 1 and 2 threads;
-// - the PIXEL_SORTED ordering (each pixel's order by the depth along its ray at which each
-//   Gaussian peaks, StopThePop) against the reference sorted per pixel: on crossing sheets,
-//   where the two orders differ by more than MAX_ORDER_PSNR, at least MIN_PSNR; on the
-//   captures, whose pixels see more Gaussians than the mapper's window of eight reorders, its
-//   PSNR against both references is printed; OpenGL draws DEPTH_SORTED for it;
 // - the blended axis lists' PSNR is printed, for the record.
 // Without arguments the capture is generated (the bench's torus, splatexample::SyntheticCapture,
 // spherical harmonics of degree 3); with --real the two real captures of the shared data
@@ -29,11 +24,7 @@
 #include "vtkVolumeSplatMapper.h"
 
 #include "vtkCamera.h"
-#include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkMath.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
 #include "vtkPointSet.h"
 #include "vtkRenderWindow.h"
 #include "vtkRendererCollection.h"
@@ -119,15 +110,6 @@ void TestCapture(const splattest::CaptureScene& capture)
     }
     mapper->SetFootprintFilterToAutomatic();
 
-    // The per-pixel order against both references, for the record.
-    mapper->SetOrderingModeToPixelSorted();
-    const Rendered pixelSorted = Draw(mapper, capture.Data, view);
-    std::printf(", pixel-sorted %.1f dB (%.1f against the depth order)",
-      splattest::PSNR(pixelSorted.RGB,
-        splattest::RenderReference(
-          capture.Data, pixelSorted.Camera, capture.Degree, 0.3, false, true)),
-      splattest::PSNR(pixelSorted.RGB, reference));
-
     // The axis lists, for the record.
     mapper->SetOrderingModeToBlended();
     const double blended = splattest::PSNR(Draw(mapper, capture.Data, view).RGB, reference);
@@ -145,49 +127,6 @@ void TestCapture(const splattest::CaptureScene& capture)
   }
   vtkSMPTools::Initialize(0);
   Check(images[0] == images[1], capture.Name + ": the images for 1 and 2 threads differ");
-}
-
-// Two flat Gaussians crossing at 60 degrees along a line off their centers, seen from above:
-// in the centers' order the nearer one covers the other everywhere, in each pixel's order each
-// covers the other on its side of the crossing.
-void TestPixelOrder()
-{
-  vtkNew<vtkPolyData> sheets;
-  vtkNew<vtkPoints> points;
-  splattest::KernelSetArrays<vtkFloatArray> arrays;
-  const double half = 0.5 * vtkMath::RadiansFromDegrees(30.0);
-  for (int i = 0; i < 2; ++i)
-  {
-    const double side = i == 0 ? 1.0 : -1.0;
-    points->InsertNextPoint(0.0, 0.0, 0.08 * i);
-    arrays.Scale->InsertNextTuple3(0.5, 0.4, 1e-3);
-    arrays.Rotation->InsertNextTuple4(std::cos(half), 0.0, side * std::sin(half), 0.0);
-    arrays.Opacity->InsertNextTuple1(0.95);
-    arrays.Color->InsertNextTuple3(i == 0 ? 1.0 : 0.1, i == 0 ? 0.2 : 0.9, 0.1);
-  }
-  sheets->SetPoints(points);
-  arrays.AddTo(sheets);
-  const splattest::CaptureView view{ "above", { 0.0, 0.3, 3.0 }, { 0.0, 0.0, 0.0 }, { 0, 1, 0 } };
-  vtkNew<vtkVolumeSplatMapper> mapper;
-  mapper->SetOrderingModeToPixelSorted();
-  const Rendered image = Draw(mapper, sheets, view);
-  Check(mapper->GetLastOrderingMode() == vtkVolumeSplatMapper::PIXEL_SORTED,
-    "crossing sheets: PIXEL_SORTED did not run on the CPU");
-  const std::vector<double> sorted =
-    splattest::RenderReference(sheets, image.Camera, 0, 0.3, false, true);
-  const double psnr = splattest::PSNR(image.RGB, sorted);
-  const double orders =
-    splattest::PSNR(splattest::RenderReference(sheets, image.Camera, 0), sorted);
-  std::printf("crossing sheets: pixel-sorted %.1f dB, the two orders %.1f dB apart\n", psnr,
-    orders);
-  Check(orders <= MAX_ORDER_PSNR, "crossing sheets: the two orders do not differ");
-  Check(psnr >= MIN_PSNR,
-    "crossing sheets: pixel-sorted PSNR " + std::to_string(psnr) + " dB against the reference");
-  vtkNew<vtkVolumeSplatMapper> gpu;
-  gpu->SetOrderingModeToPixelSorted();
-  Draw(gpu, sheets, view, vtkSplatBackend::OPENGL);
-  Check(gpu->GetLastOrderingMode() == vtkVolumeSplatMapper::DEPTH_SORTED,
-    "crossing sheets: OpenGL did not draw DEPTH_SORTED for PIXEL_SORTED");
 }
 
 // Image data keeps the blended axis lists and the low-pass filter.
@@ -231,7 +170,6 @@ int main(int argc, char* argv[])
     captures.push_back({ "torus", splatexample::SyntheticCapture(20000, 3), 3,
       splattest::CaptureViews({ 0, 0, 0 }, 0.8) });
     TestDensityDefaults();
-    TestPixelOrder();
   }
   for (const splattest::CaptureScene& capture : captures)
   {

@@ -239,7 +239,7 @@ def test_volume_mapper(servermanager):
     smproxy.UpdateVTKObjects()
     expected_entries = {
         "OrderingMode": {"Automatic": 4, "Blended": 0, "Clipped": 1, "SingleAxis": 2,
-                         "DepthSorted": 3, "PixelSorted": 5},
+                         "DepthSorted": 3},
         "FootprintFilter": {"Automatic": 3, "LowPass": 0, "Dilation": 1, "Antialiased": 2},
         "Backend": {"Auto": 0, "CPU": 1, "OpenGL": 2},
     }
