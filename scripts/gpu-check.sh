@@ -85,13 +85,14 @@ build_mesa() {
 # closure FILE...: the shared libraries FILEs load, as "NAME PATH" lines, the C library's left
 # out; fails on a library ldd cannot find.
 closure() {
-  local file
+  local file libraries
   for file in "$@"; do
-    if ldd "$file" | grep -q 'not found'; then
-      ldd "$file" | grep 'not found' >&2
+    libraries="$(ldd "$file")"
+    if grep -q 'not found' <<<"$libraries"; then
+      grep 'not found' <<<"$libraries" >&2
       die "$file needs libraries that are not found"
     fi
-    ldd "$file" | awk '$2 == "=>" && $3 ~ /^\// { print $1, $3 }'
+    awk '$2 == "=>" && $3 ~ /^\// { print $1, $3 }' <<<"$libraries"
   done | sort -u | grep -Ev "$GLIBC" || true
 }
 
