@@ -557,7 +557,8 @@ bool vtkVolumeSplatMapper::UpdateKernels(vtkVolumeProperty* property)
   }
   else if (auto* points = vtkPointSet::SafeDownCast(input))
   {
-    ok = this->BuildLatticeKernels(points, property);
+    ok = LatticeOf(points).Indices ? this->BuildLatticeKernels(points, property)
+                                   : this->BuildPointKernels(points, property);
   }
   else
   {
@@ -722,10 +723,6 @@ bool vtkVolumeSplatMapper::BuildImageKernels(vtkImageData* image, vtkVolumePrope
 bool vtkVolumeSplatMapper::BuildLatticeKernels(vtkPointSet* input, vtkVolumeProperty* property)
 {
   const Lattice lattice = LatticeOf(input);
-  if (!lattice.Indices)
-  {
-    return this->BuildPointKernels(input, property);
-  }
   vtkDataArray* indices = lattice.Indices;
   const glm::dmat3& indexToModel = lattice.Axes;
   const glm::dvec3& indexOrigin = lattice.Origin;

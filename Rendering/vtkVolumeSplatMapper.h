@@ -359,8 +359,7 @@ protected:
   std::string KernelSettings();
   bool BuildImageKernels(vtkImageData* image, vtkVolumeProperty* property);
   bool BuildPointKernels(vtkPointSet* points, vtkVolumeProperty* property);
-  /// Kernels of a point set: as for image data where it carries its voxel lattice, by
-  /// BuildPointKernels otherwise.
+  /// Kernels of a point set that carries its voxel lattice, built as for image data.
   bool BuildLatticeKernels(vtkPointSet* points, vtkVolumeProperty* property);
 
   /**
