@@ -94,13 +94,15 @@ inline const char* FilterModeName(int mode)
   }
 }
 
-// The default mapper's settings in words, e.g. "EWA, cutoff 1, 3 layers, edge AA on".
+// The default mapper's settings in words, e.g. "EWA, cutoff automatic (0.5 or 1), 3 layers,
+// edge AA on".
 inline std::string DefaultSettingDescription()
 {
   vtkNew<vtkSurfaceSplatMapper> mapper;
   std::ostringstream text;
   const int layers = mapper->GetNumberOfLayers();
-  text << FilterModeName(mapper->GetFilterMode()) << ", cutoff " << mapper->GetCutoff() << ", "
+  text << FilterModeName(mapper->GetFilterMode()) << ", cutoff "
+       << (mapper->GetCutoff() > 0.0 ? Fixed(mapper->GetCutoff(), 1) : "automatic (0.5 or 1)") << ", "
        << layers << (layers == 1 ? " layer" : " layers") << ", edge AA "
        << (mapper->GetEdgeAntialiasing() ? "on" : "off") << ", minified variance "
        << mapper->GetMinifiedVariance() << ", level of detail "
@@ -123,6 +125,7 @@ inline std::vector<SplatSetting> SplatSettings()
 {
   std::vector<SplatSetting> settings = {
     { "cutoff", "cutoff=0.5", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(0.5); } },
+    { "cutoff", "cutoff=1 (paper)", [](vtkSurfaceSplatMapper* m) { m->SetCutoffToPaper(); } },
     { "cutoff", "cutoff=2", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(2.0); } },
     { "cutoff", "cutoff=4", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(4.0); } },
     { "filter mode", "filter=circular",

@@ -152,6 +152,16 @@ struct ResamplingKernel
 };
 
 /**
+ * The summed kernel weight above which a pixel counts as fully covered at a cutoff: tau is the
+ * paper's threshold for c = 1; other cutoffs keep a different share 1 - e^-c of each kernel's
+ * unit mass, and the threshold follows it.
+ */
+inline double FullCoverageWeight(double tau, double cutoff)
+{
+  return tau * (1.0 - std::exp(-cutoff)) / (1.0 - std::exp(-1.0));
+}
+
+/**
  * The screen-space filter of a kernel, as compared in paper 000, figure 8.
  */
 enum class KernelFilter

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSurfaceSplatMapper.h"
 
+#include "SplatSurfelCoverage.h"
 #include "SplatSurfelKernel.h"
 #include "vtkOpenGLImageDepthCompositor.h"
 #include "vtkOpenGLSurfaceSplatRasterizer.h"
@@ -60,6 +61,26 @@ struct vtkSurfaceSplatMapper::SurfelArrays
   // Their levels of detail, built on the first CPU frame that draws them.
   vtkNew<vtkSurfelHierarchy> Hierarchy;
   vtkTimeStamp HierarchyTime;
+
+  // The share of the surface a tight cutoff leaves uncovered (SplatSurfelCoverage.h), for the
+  // cutoff and coverage threshold it was computed with.
+  double TightUncoveredShare = 0.0;
+  double CoverageCutoff = 0.0;
+  double CoverageThreshold = 0.0;
+  vtkTimeStamp CoverageTime;
+
+  double UncoveredShare(double cutoff, double coverageThreshold)
+  {
+    if (this->CoverageTime < this->BuildTime || cutoff != this->CoverageCutoff ||
+      coverageThreshold != this->CoverageThreshold)
+    {
+      this->TightUncoveredShare = splat::UncoveredShare(this->View(), cutoff, coverageThreshold);
+      this->CoverageCutoff = cutoff;
+      this->CoverageThreshold = coverageThreshold;
+      this->CoverageTime.Modified();
+    }
+    return this->TightUncoveredShare;
+  }
 
   const vtkSurfelHierarchy* UpdateHierarchy()
   {
@@ -188,17 +209,38 @@ vtkSurfaceSplatMapper::~vtkSurfaceSplatMapper()
 //------------------------------------------------------------------------------
 void vtkSurfaceSplatMapper::SetCutoff(double cutoff)
 {
-  if (cutoff != this->Rasterizer->GetCutoff())
+  if (!(cutoff >= 0.0))
   {
-    this->Rasterizer->SetCutoff(cutoff);
+    vtkErrorMacro("Cutoff must be 0 (automatic) or positive, not " << cutoff << ".");
+    return;
+  }
+  if (cutoff != this->Cutoff)
+  {
+    this->Cutoff = cutoff;
     this->Modified();
   }
 }
 
 //------------------------------------------------------------------------------
-double vtkSurfaceSplatMapper::GetCutoff()
+double vtkSurfaceSplatMapper::ChooseCutoff()
 {
-  return this->Rasterizer->GetCutoff();
+  constexpr double Paper = 1.0;
+  constexpr double Tight = 0.5;
+  // The share of the surface the tight cutoff may leave uncovered: holes in fewer samples are
+  // at the surface's boundary or too small to see.
+  constexpr double AcceptedHoles = 0.01;
+  if (this->Cutoff > 0.0)
+  {
+    return this->Cutoff;
+  }
+  if (this->Primitive != SURFELS)
+  {
+    return Paper;
+  }
+  return this->Surfels->UncoveredShare(Tight, this->Rasterizer->GetCoverageThreshold()) <=
+      AcceptedHoles
+    ? Tight
+    : Paper;
 }
 
 //------------------------------------------------------------------------------
@@ -559,6 +601,9 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
       : static_cast<splat::KernelFilter>(this->FilterMode));
   this->Rasterizer->SetBackfaceCulling(property->GetBackfaceCulling());
 
+  this->LastCutoff = this->ChooseCutoff();
+  this->Rasterizer->SetCutoff(this->LastCutoff);
+
   this->Compositor->MoveGraphicsResources(ren, this);
   // Picking draws with OpenGL whatever the backend: the selector reads the framebuffer.
   if (vtkHardwareSelector* selector = ren->GetSelector())
@@ -748,7 +793,8 @@ void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Backend: " << vtkSplatBackend::GetBackendAsString(this->Backend) << "\n";
   os << indent << "LastBackend: " << vtkSplatBackend::GetBackendAsString(this->LastBackend)
      << "\n";
-  os << indent << "Cutoff: " << this->Rasterizer->GetCutoff() << "\n";
+  os << indent << "Cutoff: " << this->Cutoff << (this->Cutoff > 0.0 ? "\n" : " (automatic)\n");
+  os << indent << "LastCutoff: " << this->LastCutoff << "\n";
   os << indent << "MinifiedVariance: " << this->Rasterizer->GetMinifiedVariance() << "\n";
   os << indent << "LevelOfDetail: " << this->LevelOfDetail << "\n";
   os << indent << "DepthThreshold: " << this->Rasterizer->GetDepthThreshold() << "\n";

@@ -272,10 +272,7 @@ vtkSurfaceSplatRasterizer::~vtkSurfaceSplatRasterizer()
 //------------------------------------------------------------------------------
 float vtkSurfaceSplatRasterizer::FullCoverageWeight() const
 {
-  // tau is the paper's threshold for c = 1; other cutoffs keep a different share 1 - e^-c of
-  // each kernel's unit mass, and the threshold follows it.
-  return static_cast<float>(
-    this->CoverageThreshold * (1.0 - std::exp(-this->Cutoff)) / (1.0 - std::exp(-1.0)));
+  return static_cast<float>(splat::FullCoverageWeight(this->CoverageThreshold, this->Cutoff));
 }
 
 //------------------------------------------------------------------------------

@@ -108,7 +108,7 @@ def test_mapper(servermanager):
     smproxy.UpdateVTKObjects()
     check_defaults_and_enumerations(
         smproxy, mapper, "",
-        {"Cutoff": 1.0, "MinifiedVariance": 0.75, "LevelOfDetail": 1, "Radius": 1.0,
+        {"Cutoff": 0.0, "MinifiedVariance": 0.75, "LevelOfDetail": 1, "Radius": 1.0,
          "DepthThreshold": 1.0,
          "FilterMode": 0,
          "Backend": 0, "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.4,

@@ -24,7 +24,7 @@ NAME = "TestSurfaceSplatRepresentation"
 # Settings exposed on the representation: the default, another value, the mapper's information
 # property that reads it back, and the value read back.
 MAPPER_SETTINGS = [
-    ("SurfaceSplatCutoff", 1.0, 2.0, "CutoffInfo", 2.0),
+    ("SurfaceSplatCutoff", 0.0, 2.0, "CutoffInfo", 2.0),
     ("SurfaceSplatDepthThreshold", 1.0, 0.5, "DepthThresholdInfo", 0.5),
     ("SurfaceSplatFilterMode", "EWA", "Circular", "FilterModeInfo", 1),
     ("SurfaceSplatNumberOfLayers", 3, 5, "NumberOfLayersInfo", 5),

@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "SplatSurfelCoverage.h"
+
+#include "SplatSurfelKernel.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkIdList.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPThreadLocalObject.h"
+#include "vtkSMPTools.h"
+#include "vtkStaticPointLocator.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+namespace
+{
+// Surfels whose disks are sampled (evenly spread over the input order), and points per disk:
+// about 16 k neighborhood queries, a few milliseconds, whatever the size of the set.
+constexpr std::size_t SampledSurfels = 2048;
+constexpr int PointsPerDisk = 8;
+
+glm::dvec3 Vec(const float* v)
+{
+  return glm::dvec3(v[0], v[1], v[2]);
+}
+}
+
+namespace splat
+{
+
+double UncoveredShare(
+  const vtkSurfaceSplatRasterizer::Surfels& surfels, double cutoff, double coverageThreshold)
+{
+  const std::size_t count = surfels.Count;
+  double largestAxis = 0.0;
+  for (std::size_t i = 0; i < 3 * count; i += 3)
+  {
+    largestAxis = std::max({ largestAxis, glm::length(Vec(surfels.Axes0 + i)),
+      glm::length(Vec(surfels.Axes1 + i)) });
+  }
+  if (count == 0 || !(largestAxis > 0.0 && std::isfinite(largestAxis)))
+  {
+    return 0.0;
+  }
+  // The positions in place, as the points of a data set for the locator.
+  vtkNew<vtkDoubleArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetArray(const_cast<double*>(surfels.Positions),
+    static_cast<vtkIdType>(3 * count), /*save=*/1);
+  vtkNew<vtkPoints> points;
+  points->SetData(coordinates);
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(points);
+  vtkNew<vtkStaticPointLocator> locator;
+  locator->SetDataSet(cloud);
+  locator->BuildLocator();
+
+  const double paperCutoff = 1.0;
+  const double reach = std::sqrt(std::max(cutoff, paperCutoff)) * largestAxis;
+  const double paperFull = FullCoverageWeight(coverageThreshold, paperCutoff);
+  const double full = FullCoverageWeight(coverageThreshold, cutoff);
+  const std::size_t sampled = std::min(count, SampledSurfels);
+  std::atomic<vtkIdType> coveredByPaper(0), uncovered(0);
+  vtkSMPThreadLocalObject<vtkIdList> neighborLists;
+  vtkSMPTools::For(0, static_cast<vtkIdType>(sampled),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      vtkIdList* neighbors = neighborLists.Local();
+      vtkIdType covered = 0, holes = 0;
+      for (vtkIdType s = begin; s < end; ++s)
+      {
+        const std::size_t i = static_cast<std::size_t>(s) * count / sampled;
+        const glm::dvec3 p(surfels.Positions[3 * i], surfels.Positions[3 * i + 1],
+          surfels.Positions[3 * i + 2]);
+        const glm::dvec3 a0 = Vec(surfels.Axes0 + 3 * i), a1 = Vec(surfels.Axes1 + 3 * i);
+        const glm::dvec3 n = Vec(surfels.Normals + 3 * i);
+        for (int k = 0; k < PointsPerDisk; ++k)
+        {
+          // Points spread evenly over the disk |u| < 1 (a sunflower pattern).
+          const double radius = std::sqrt((k + 0.5) / PointsPerDisk);
+          const double angle = 2.39996322972865332 * k + 0.7 * s;
+          const glm::dvec3 x = p + radius * (std::cos(angle) * a0 + std::sin(angle) * a1);
+          locator->FindPointsWithinRadius(reach, &x[0], neighbors);
+          double paperWeight = 0.0, weight = 0.0;
+          for (vtkIdType m = 0; m < neighbors->GetNumberOfIds(); ++m)
+          {
+            const std::size_t j = static_cast<std::size_t>(neighbors->GetId(m));
+            const glm::dvec3 b0 = Vec(surfels.Axes0 + 3 * j), b1 = Vec(surfels.Axes1 + 3 * j);
+            const glm::dvec3 nj = Vec(surfels.Normals + 3 * j);
+            const glm::dvec3 d = x -
+              glm::dvec3(surfels.Positions[3 * j], surfels.Positions[3 * j + 1],
+                surfels.Positions[3 * j + 2]);
+            const double size = std::max(glm::length(b0), glm::length(b1));
+            if (!(glm::dot(n, nj) > 0.0) ||
+              !(std::abs(glm::dot(d, nj)) <= size * glm::length(nj)))
+            {
+              continue;
+            }
+            const double u0 = glm::dot(d, b0) / glm::dot(b0, b0);
+            const double u1 = glm::dot(d, b1) / glm::dot(b1, b1);
+            const double beta = u0 * u0 + u1 * u1;
+            const double w = 2.0 * InverseTwoPi * std::exp(-beta);
+            paperWeight += beta < paperCutoff ? w : 0.0;
+            weight += beta < cutoff ? w : 0.0;
+          }
+          if (paperWeight >= paperFull)
+          {
+            ++covered;
+            holes += weight < full;
+          }
+        }
+      }
+      coveredByPaper += covered;
+      uncovered += holes;
+    });
+  return coveredByPaper > 0 ? static_cast<double>(uncovered) / coveredByPaper : 0.0;
+}
+
+}

@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SplatSurfelCoverage.h
+ * @brief Whether a set of surfels still covers its surface at a tighter cutoff than the paper's.
+ *
+ * A smaller cutoff blends fewer neighbors per pixel: sharper and faster on surfaces whose
+ * surfels overlap well (mesh vertices with the radius of their longest edge, regular grids),
+ * but it opens holes between scattered points whose radii only just reach their neighbors.
+ * The test is done once per surfel set, in object space (magnified, where holes show): at
+ * sample points spread over the disks of some of the surfels, the summed kernel weights of
+ * their neighbors, as a magnified splat draws them (e^-beta / pi for beta = |u|^2 in axis
+ * units, see SplatSurfelKernel.h), are compared with the full-coverage weight of each cutoff.
+ * A sample counts where the tighter cutoff gives it less than full coverage, so that edge
+ * antialiasing would let the background through: between the tight disks of a regular grid
+ * (R = h, cutoff 0.5, where one or two of them reach) as between scattered points.
+ */
+#ifndef SplatSurfelCoverage_h
+#define SplatSurfelCoverage_h
+
+#include "vtkSurfaceSplatRasterizer.h" // For Surfels
+
+namespace splat
+{
+
+/**
+ * The share of the sample points covered at the paper's cutoff (1) that `cutoff` leaves
+ * uncovered, with `coverageThreshold` the full-coverage weight tau at the paper's cutoff
+ * (scaled for others as vtkSurfaceSplatRasterizer does). Neighbors facing the other way or off
+ * the sample's tangent plane by more than their size (the other side of a thin part) do not
+ * count. 0 for sets without finite positive axes.
+ */
+double UncoveredShare(
+  const vtkSurfaceSplatRasterizer::Surfels& surfels, double cutoff, double coverageThreshold);
+
+}
+
+#endif

@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkSurfaceSplatMapper's automatic cutoff (the default): 0.5 for surfels that cover their
+// surface at that cutoff, the paper's 1 for those that do not, and any cutoff set by hand as
+// it is. Checked through GetLastCutoff() and through the image, which must be the one the
+// chosen cutoff draws when set by hand:
+// - surfels on a mesh's vertices (vtkSurfelGenerator: radius of the longest edge) get 0.5;
+// - points scattered at random over the same mesh (radius from the nearest points) get 1,
+//   as does a grid of surfels whose radius is its spacing (the tight disks only touch);
+// - the same grid with a radius of 1.5 spacings gets 0.5;
+// - differential points keep 1; SetCutoff(2) and SetCutoffToPaper() are used as set; a
+//   negative cutoff is refused with an error and changes nothing.
+#include "SplatTestUtilities.h"
+#include "vtkDifferentialPointGenerator.h"
+#include "vtkSurfaceSplatMapper.h"
+#include "vtkSurfelGenerator.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkPolyDataPointSampler.h"
+#include "vtkRenderer.h"
+#include "vtkSphereSource.h"
+
+#include <cstdio>
+#include <functional>
+#include <string>
+
+namespace
+{
+struct Drawn
+{
+  double Cutoff;
+  std::vector<double> Pixels;
+};
+
+// Draws `surfels` with a CPU mapper configured by `apply`: the cutoff it used and its image.
+Drawn Draw(vtkPolyData* surfels, const std::function<void(vtkSurfaceSplatMapper*)>& apply)
+{
+  vtkNew<vtkSurfaceSplatMapper> mapper;
+  mapper->SetInputData(surfels);
+  mapper->SetBackend(vtkSplatBackend::CPU);
+  if (apply)
+  {
+    apply(mapper);
+  }
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  auto window = splattest::MakeRenderWindow(160, 160);
+  window->AddRenderer(renderer);
+  renderer->GetActiveCamera()->SetPosition(0.3, 0.4, 4.0);
+  renderer->ResetCamera();
+  renderer->GetActiveCamera()->Dolly(1.5);
+  renderer->ResetCameraClippingRange();
+  window->Render();
+  return { mapper->GetLastCutoff(), splattest::ToRGB(splattest::Capture(window)) };
+}
+
+// The default's cutoff on `surfels` must be `expected`, with the image of that cutoff set by
+// hand.
+void CheckAutomatic(vtkPolyData* surfels, double expected, const std::string& what)
+{
+  const Drawn automatic = Draw(surfels, nullptr);
+  std::printf("%s: automatic cutoff %g\n", what.c_str(), automatic.Cutoff);
+  splattest::Check(automatic.Cutoff == expected,
+    what + " draws with cutoff " + std::to_string(expected));
+  const Drawn byHand = Draw(surfels, [&](vtkSurfaceSplatMapper* m) { m->SetCutoff(expected); });
+  splattest::Check(splattest::LargestDifference(automatic.Pixels, byHand.Pixels) == 0.0,
+    what + ": the image is the one of its cutoff set by hand");
+}
+
+vtkSmartPointer<vtkPolyData> Surfels(vtkPolyData* input)
+{
+  vtkNew<vtkSurfelGenerator> generator;
+  generator->SetInputData(input);
+  generator->Update();
+  return generator->GetOutput();
+}
+
+// A 60 x 60 grid of spacing 0.05 in the plane z = 0 with the given radius.
+vtkSmartPointer<vtkPolyData> Grid(double radius)
+{
+  const double center[3] = { 0.0, 0.0, 0.0 };
+  const double u[3] = { 0.05, 0.0, 0.0 };
+  const double v[3] = { 0.0, 0.05, 0.0 };
+  vtkSmartPointer<vtkPolyData> grid = splattest::SurfelPlane(center, u, v, 60, 60);
+  vtkDataArray* radii = grid->GetPointData()->GetArray("Radius");
+  for (vtkIdType i = 0; i < radii->GetNumberOfTuples(); ++i)
+  {
+    radii->SetTuple1(i, radius);
+  }
+  return grid;
+}
+}
+
+int main(int, char*[])
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(80);
+  sphere->SetPhiResolution(40);
+  sphere->Update();
+  CheckAutomatic(Surfels(sphere->GetOutput()), 0.5, "surfels on a sphere's vertices");
+
+  vtkNew<vtkPolyDataPointSampler> sampler;
+  sampler->SetInputConnection(sphere->GetOutputPort());
+  sampler->SetPointGenerationModeToRandom();
+  sampler->SetDistance(0.03);
+  sampler->GenerateVertexPointsOff();
+  sampler->GenerateEdgePointsOff();
+  sampler->Update();
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(sampler->GetOutput()->GetPoints());
+  CheckAutomatic(Surfels(cloud), 1.0, "points scattered over the sphere");
+
+  CheckAutomatic(Grid(0.05), 1.0, "a grid with the radius of its spacing");
+  CheckAutomatic(Grid(0.075), 0.5, "a grid with 1.5 times the radius of its spacing");
+
+  vtkSmartPointer<vtkPolyData> surfels = Surfels(sphere->GetOutput());
+  splattest::Check(Draw(surfels, [](vtkSurfaceSplatMapper* m) { m->SetCutoff(2.0); }).Cutoff ==
+      2.0,
+    "a cutoff set by hand is used as set");
+  splattest::Check(
+    Draw(surfels, [](vtkSurfaceSplatMapper* m) { m->SetCutoffToPaper(); }).Cutoff == 1.0,
+    "SetCutoffToPaper draws with cutoff 1");
+  vtkNew<vtkDifferentialPointGenerator> differential;
+  differential->SetInputConnection(sphere->GetOutputPort());
+  differential->SimplifyOff();
+  differential->Update();
+  splattest::Check(Draw(differential->GetOutput(),
+                     [](vtkSurfaceSplatMapper* m) { m->SetPrimitiveToDifferentialPoints(); })
+                       .Cutoff == 1.0,
+    "differential points keep the paper's cutoff");
+
+  vtkNew<vtkSurfaceSplatMapper> mapper;
+  mapper->SetCutoff(2.0);
+  vtkObject::GlobalWarningDisplayOff();
+  mapper->SetCutoff(-1.0);
+  vtkObject::GlobalWarningDisplayOn();
+  splattest::Check(mapper->GetCutoff() == 2.0, "a negative cutoff is refused");
+  mapper->SetCutoffToAutomatic();
+  splattest::Check(mapper->GetCutoff() == 0.0, "SetCutoffToAutomatic sets 0");
+  return splattest::Failures() == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
