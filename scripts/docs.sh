@@ -111,7 +111,7 @@ EOF
   fi
   row "Surface filter mode (\`SetFilterMode\`, \`--filter\`) on the report's checkerboard at a grazing angle (paper 000, figure 8), against the analytic reference: EWA (the default) stays gray where the checks are finer than the pixels, circular and unfiltered splats alias." \
     surface-reference surface-default surface-circular surface-unfiltered
-  row "Surface cutoff (\`SetCutoff\`, \`--cutoff\`): where each splat is truncated; 1 is the paper's and the default." \
+  row "Surface cutoff (\`SetCutoff\`, \`--cutoff\`): where each splat is truncated. The default picks 0.5 where the surfels still cover their surface at it (mesh vertices) and the paper's 1 elsewhere: 1 on this grid, whose tight disks only touch." \
     surface-cutoff-0.5 surface-default surface-cutoff-2
   row "Volume ordering (\`SetOrderingMode\`, \`--ordering\`) on a capture: depth-sorted (the default for captures) is the order it was trained in; the axis lists (blended, clipped; the default for density volumes) misorder overlapping Gaussians." \
     ordering-depth-sorted ordering-blended ordering-clipped
