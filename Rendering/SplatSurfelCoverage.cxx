@@ -106,6 +106,10 @@ double UncoveredShare(
             const double w = 2.0 * InverseTwoPi * std::exp(-beta);
             paperWeight += beta < paperCutoff ? w : 0.0;
             weight += beta < cutoff ? w : 0.0;
+            if (paperWeight >= paperFull && weight >= full)
+            {
+              break; // covered at both cutoffs: on coincident points, after a few neighbors
+            }
           }
           if (paperWeight >= paperFull)
           {
