@@ -183,6 +183,7 @@ vtkIdType MinifiedSplatCells::Gather(SurfaceFragment* fragments, std::uint8_t* c
   const int layers = this->Layers;
   const int reach = this->Reach;
   const float full = fullCoverage;
+  const float negligible = NegligibleCoverage * full;
   const ExponentialTable exponential(cutoff);
   const int bands = (height + BandHeight - 1) / BandHeight;
   std::vector<vtkIdType> gathered(bands, 0);
@@ -224,7 +225,8 @@ vtkIdType MinifiedSplatCells::Gather(SurfaceFragment* fragments, std::uint8_t* c
             return;
           }
           bool inserted;
-          const int i = OpaqueSlot(pixelFragments, count, layers, z, c.Threshold, inserted);
+          const int i = OpaqueSlot(
+            pixelFragments, count, layers, z, c.Threshold, inserted, w * c.Sum.Weight, negligible);
           if (i < 0)
           {
             return;

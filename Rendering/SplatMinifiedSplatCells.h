@@ -113,6 +113,11 @@ inline float DepthOf(const MinifiedSplatCells::Cell& c)
   return c.Sum.Depth;
 }
 
+inline float WeightOf(const MinifiedSplatCells::Cell& c)
+{
+  return c.Sum.Weight;
+}
+
 } // namespace splat
 
 #endif

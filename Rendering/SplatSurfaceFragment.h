@@ -104,15 +104,32 @@ inline float DepthOf(const SurfaceFragment& f)
   return f.Depth;
 }
 
+/// The share of full coverage below which a fragment is a sliver that gives way (OpaqueSlot):
+/// alone, edge antialiasing draws it with at most that alpha.
+constexpr float NegligibleCoverage = 0.02f;
+
+inline float WeightOf(const SurfaceFragment& f)
+{
+  return f.Weight;
+}
+
 /**
- * Where an opaque contribution at eye depth z goes among a pixel's `count` items (fragments,
- * or anything with a DepthOf), sorted front to back: the index of the surface within the z
- * threshold, or, with `inserted` set, of a new surface shifted into place for the caller to
- * fill; -1 when it falls behind the last of `layers` items and is hidden.
+ * Where an opaque contribution of weight w at eye depth z goes among a pixel's `count` items
+ * (fragments, or anything with a DepthOf and a WeightOf), sorted front to back: the index of
+ * the surface within the z threshold, or, with `inserted` set, of a new surface moved into
+ * place for the caller to fill; -1 when it is left out.
+ *
+ * Once `layers` surfaces are held, an item of weight below `negligible` gives way first (the
+ * lightest), else the farthest to a new surface in front of it; a new surface below
+ * `negligible` takes no held layer. This is for the splats' fragments: at silhouettes, the depth
+ * planes of grazing splats, extrapolated over their low-pass fringe, land far in front of and
+ * behind the surface, and those slivers of a thousandth of a pixel's weight took the layers and
+ * pushed the surface's own fragment out (the silhouette of a dense sphere came out 1.5 pixels
+ * inside the true one, its edge pixels empty).
  */
 template <typename Item>
-inline int OpaqueSlot(
-  Item* items, std::uint8_t& count, int layers, float z, float threshold, bool& inserted)
+inline int OpaqueSlot(Item* items, std::uint8_t& count, int layers, float z, float threshold,
+  bool& inserted, float w = 0.0f, float negligible = 0.0f)
 {
   int i = 0;
   while (i < count && z > DepthOf(items[i]) + threshold)
@@ -124,17 +141,42 @@ inline int OpaqueSlot(
   {
     return i;
   }
-  if (i == layers)
+  int out = count; // the item that gives way; none while a layer is free
+  if (count == layers)
   {
-    return -1;
+    if (w < negligible)
+    {
+      return -1;
+    }
+    out = -1;
+    for (int j = 0; j < count; ++j)
+    {
+      const float weight = WeightOf(items[j]);
+      out = weight < negligible && (out < 0 || weight < WeightOf(items[out])) ? j : out;
+    }
+    if (out < 0)
+    {
+      if (i == layers)
+      {
+        return -1;
+      }
+      out = count - 1;
+    }
   }
-  const int kept = std::min<int>(count, layers - 1);
-  for (int j = kept; j > i; --j)
+  else
+  {
+    ++count;
+  }
+  // The items between the one given way (or the free layer) and the new one's place close up.
+  for (int j = out; j + 1 < i; ++j)
+  {
+    items[j] = items[j + 1];
+  }
+  for (int j = out; j > i; --j)
   {
     items[j] = items[j - 1];
   }
-  count = static_cast<std::uint8_t>(kept + 1);
-  return i;
+  return out < i ? i - 1 : i;
 }
 
 /**

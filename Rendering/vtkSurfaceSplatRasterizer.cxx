@@ -235,12 +235,14 @@ void SetUpDifferentialSplat(const splat::PixelRays& rays, const glm::dvec3& p,
 }
 
 // An opaque contribution to a pixel's fragments: it joins the surface within its z threshold,
-// or becomes a new surface; what falls behind the last of `layers` fragments is dropped.
+// or becomes a new surface, in place of a sliver or the farthest once `layers` are held
+// (OpaqueSlot).
 inline void AddOpaque(Fragment* fragments, std::uint8_t& count, int layers, float z, float w,
-  const float* normal, const ScreenSplat& s)
+  float negligible, const float* normal, const ScreenSplat& s)
 {
   bool inserted;
-  const int i = splat::OpaqueSlot(fragments, count, layers, z, s.Threshold, inserted);
+  const int i =
+    splat::OpaqueSlot(fragments, count, layers, z, s.Threshold, inserted, w, negligible);
   if (i < 0)
   {
     return;
@@ -428,6 +430,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const int layers = this->Layers;
   const splat::ExponentialTable exponential(cutoffF);
   const float full = frame.FullCoverage;
+  const float negligible = splat::NegligibleCoverage * full;
 
   if (this->Internal->SplatCapacity < static_cast<std::size_t>(count))
   {
@@ -760,7 +763,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                 const float w = rectangles ? 1.0f : s.Amplitude * exponential(beta);
                 if (!translucent)
                 {
-                  AddOpaque(pixelFragments, count, layers, z, w, normal, s);
+                  AddOpaque(pixelFragments, count, layers, z, w, negligible, normal, s);
                 }
                 else
                 {

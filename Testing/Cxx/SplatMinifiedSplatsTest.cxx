@@ -168,10 +168,11 @@ double SilhouetteRadius(double r, double d)
 }
 
 // A sphere of sub-pixel splats (about 0.45 pixels apart) renders within the stated RMSE of the
-// exact kernels, and its silhouette against the background keeps its partial coverage, its
-// covered area within half a pixel of radius of the exact kernels' (both lie about 1.5 pixels
-// inside the true silhouette: coverage is the summed weight over tau, which the last splats at
-// a grazing angle do not reach).
+// exact kernels, and its silhouette against the background keeps its partial coverage: more
+// partly covered pixels than the silhouette's circumference, and the covered area, drawn either
+// way, within half a pixel of radius of the true silhouette. (It lay 1.5 pixels inside while the
+// slivers of the grazing splats' fringe, at depths far off the surface, could push the
+// surface's own fragments out of the layers: splat::OpaqueSlot.)
 TEST(MinifiedSplats, SphereOfSubpixelSplatsMatchesTheExactKernels)
 {
   const SurfelGrid sphere = SurfelSphere(400000, 0.3, glm::dvec3(0.0));
@@ -209,13 +210,13 @@ TEST(MinifiedSplats, SphereOfSubpixelSplatsMatchesTheExactKernels)
       radiusMinified, radiusExact, radius);
     EXPECT_LT(color, 0.015);
     EXPECT_LT(alpha, 0.06);
-    EXPECT_GT(edgeExact, 100u);
-    EXPECT_GT(edgeMinified, 0.7 * edgeExact);
+    EXPECT_GT(edgeExact, 2.0 * M_PI * radius);
+    EXPECT_GT(edgeMinified, 2.0 * M_PI * radius);
     // Merged nodes leave the silhouette a little wider than the per-pixel sums do; drawn by
     // merged nodes alone, without the surfels at grazing angles, it is ragged (8 times).
     EXPECT_LT(edgeMinified, (path == Path::Minified ? 2.0 : 2.5) * edgeExact);
-    EXPECT_NEAR(radiusMinified, radiusExact, 0.5);
-    EXPECT_NEAR(radiusExact, radius, 2.0);
+    EXPECT_NEAR(radiusMinified, radius, 0.5);
+    EXPECT_NEAR(radiusExact, radius, 0.5);
   }
 }
 

@@ -2,6 +2,7 @@
 // Unit tests of the CPU rasterizer (vtkSurfaceSplatRasterizer): accumulation and normalization
 // (paper 000, sections 4 and 7), elliptical surfels, culling, and thread-independent results.
 #include "SplatRasterizerTestUtilities.h"
+#include "SplatSurfaceFragment.h"
 #include "vtkSurfaceSplatRasterizer.h"
 
 #include "vtkNew.h"
@@ -16,6 +17,64 @@
 #include <vector>
 
 using namespace splat_test;
+
+// A pixel's opaque surfaces once its layers are full: a sliver (below the negligible weight)
+// gives way to a new surface wherever that lies, else the farthest to one in front of it; a new
+// sliver takes no layer.
+TEST(SurfaceSplatRasterizer, SliversGiveWayInFullLayers)
+{
+  auto pixel = [](std::initializer_list<std::pair<float, float>> surfaces)
+  {
+    std::vector<splat::SurfaceFragment> fragments;
+    for (const auto& s : surfaces)
+    {
+      const float normal[3] = { 0.0f, 0.0f, 1.0f };
+      const float color[3] = { 1.0f, 1.0f, 1.0f };
+      fragments.push_back(splat::NewFragment(s.first, s.second, normal, color, 1.0f));
+    }
+    return fragments;
+  };
+  auto depths = [](const std::vector<splat::SurfaceFragment>& fragments)
+  {
+    std::vector<float> d;
+    for (const auto& f : fragments)
+    {
+      d.push_back(f.Depth);
+    }
+    return d;
+  };
+  const float negligible = 0.01f;
+  bool inserted = false;
+  // (depth, weight): a sliver in front of the surface, the surface, and one behind.
+  auto f = pixel({ { 1.0f, 0.001f }, { 2.0f, 0.5f }, { 3.0f, 0.5f } });
+  std::uint8_t count = 3;
+  // A surface behind all three takes the sliver's layer.
+  int i = splat::OpaqueSlot(f.data(), count, 3, 4.0f, 0.1f, inserted, 0.3f, negligible);
+  EXPECT_TRUE(inserted);
+  EXPECT_EQ(i, 2);
+  f[i].Depth = 4.0f;
+  EXPECT_EQ(depths(f), std::vector<float>({ 2.0f, 3.0f, 4.0f }));
+  // Without slivers, the farthest gives way to a surface in front of it ...
+  i = splat::OpaqueSlot(f.data(), count, 3, 2.5f, 0.1f, inserted, 0.3f, negligible);
+  EXPECT_EQ(i, 1);
+  f[i].Depth = 2.5f;
+  EXPECT_EQ(depths(f), std::vector<float>({ 2.0f, 2.5f, 3.0f }));
+  // ... and none to one behind them all, nor to a sliver anywhere.
+  EXPECT_EQ(splat::OpaqueSlot(f.data(), count, 3, 5.0f, 0.1f, inserted, 0.3f, negligible), -1);
+  EXPECT_EQ(splat::OpaqueSlot(f.data(), count, 3, 0.5f, 0.1f, inserted, 0.001f, negligible), -1);
+  EXPECT_EQ(count, 3);
+  // Within the z threshold a sliver joins its surface.
+  EXPECT_EQ(splat::OpaqueSlot(f.data(), count, 3, 2.55f, 0.1f, inserted, 0.001f, negligible), 1);
+  EXPECT_FALSE(inserted);
+  // A free layer takes any surface.
+  f = pixel({ { 2.0f, 0.5f } });
+  count = 1;
+  f.resize(3);
+  EXPECT_EQ(splat::OpaqueSlot(f.data(), count, 3, 1.0f, 0.1f, inserted, 0.001f, negligible), 0);
+  EXPECT_TRUE(inserted);
+  EXPECT_EQ(count, 2);
+  EXPECT_EQ(f[1].Depth, 2.0f);
+}
 
 // Before normalization, kernels of surfels on a regular grid with radius = spacing sum to 1
 // (partition of unity) under magnification and minification alike; truncation at the cutoff c

@@ -161,19 +161,23 @@ int main(int argc, char* argv[])
 {
   const std::string bunny = splattest::Argument(argc, argv, "-D") + "/bunny.ply";
   const std::string output = splattest::Argument(argc, argv, "-T");
-  // The bounds: the RMSE measured on llvmpipe, with margin. Measured: sphere 0.0032, bunny
-  // 0.0149, checkerboard 0.00005, translucent planes 0.00000 (the same bytes), magnified sphere
-  // 0.0058. What differs:
+  // The bounds: the RMSE measured on llvmpipe, with margin. Measured: sphere 0.0109, bunny
+  // 0.0154, checkerboard 0.0034, translucent planes 0.00001, magnified sphere 0.0058. What
+  // differs: on the sphere's rim, the CPU's minified splats let slivers give way (OpaqueSlot in
+  // SplatSurfaceFragment.h), which brings its silhouette out to the mesh's (splat_report's
+  // sphere: CPU 0.0029, OpenGL 0.0056); the OpenGL backend's depth-ordered peels rarely lose a
+  // surface to slivers, and the same rule there, peeling on past them, cost 1.6x the time for
+  // no gain (bunny 0.0264 from 0.0263, sphere 0.0056 from 0.0056). Elsewhere:
   // the GPU evaluates exp() per fragment where the CPU steps forward differences through a
   // table (a few 1e-6 per weight), and shades at the weighted mean depth of a surface where the
   // CPU takes its nearest contribution, which moves specular highlights and the accumulate-or-
   // separate decision at silhouettes (the bunny's ears and folds: single pixels up to 0.77).
   // The OpenGL backend's other filters exceed every bound (approximate / circular: sphere
-  // 0.0147 / 0.0159, bunny 0.0474 / 0.0520, checkerboard 0.0646 / 0.1473, translucent planes
+  // 0.0159 / 0.0189, bunny 0.0362 / 0.0324, checkerboard 0.0646 / 0.1473, translucent planes
   // 0.0191 / 0.0066, magnified sphere 0.0169 / 0.0393): a change of the exact filter to either
   // fails.
   const std::vector<std::pair<std::function<Scene(vtkRenderer*)>, double>> scenes = {
-    { Sphere, 0.008 },
+    { Sphere, 0.013 },
     { [&bunny](vtkRenderer* r) { return Bunny(r, bunny); }, 0.025 },
     { Checkerboard, 0.004 },
     { TranslucentPlanes, 0.004 },
