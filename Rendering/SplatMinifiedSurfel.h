@@ -109,7 +109,7 @@ public:
   struct Batch
   {
     // Loaded: the eye-space center, the model-space axes and normal, and the mass scale.
-    // Project replaces the normal with the eye-space one turned towards the viewer.
+    // Project replaces the normal with the eye-space one, unit length, either side (AddNormal).
     float PX[BatchSize], PY[BatchSize], PZ[BatchSize];
     float A0X[BatchSize], A0Y[BatchSize], A0Z[BatchSize];
     float A1X[BatchSize], A1Y[BatchSize], A1Z[BatchSize];
@@ -204,7 +204,6 @@ public:
       const float nz = N[0][2] * batch.NX[j] + N[1][2] * batch.NY[j] + N[2][2] * batch.NZ[j];
       const float facing =
         perspective * (nx * px + ny * py + nz * pz) - (1.0f - perspective) * nz;
-      const bool backFacing = facing > 0.0f;
       // Foreshortening(J) = 2 |J| / (|j0|^2 + |j1|^2), and J Vr J^T's largest eigenvalue.
       const float det = j0x * j1y - j1x * j0y;
       const float squaredAxes = j0x * j0x + j0y * j0y + j1x * j1x + j1y * j1y;
@@ -219,7 +218,7 @@ public:
       // Selected one condition at a time, which vectorizes (a chain of conditions does not).
       int outcome = minified ? Minified : Magnified;
       outcome = edge ? EdgeOn : outcome;
-      outcome = backFacing & cullBackFaces ? FacingAway : outcome;
+      outcome = (facing > 0.0f) & cullBackFaces ? FacingAway : outcome;
       batch.Outcome[j] = inRange ? outcome : Culled;
       batch.CenterX[j] = (ndcX + 1.0f) * half.x;
       batch.CenterY[j] = (ndcY + 1.0f) * half.y;
@@ -232,8 +231,8 @@ public:
         std::sqrt(std::max(a0x * a0x + a0y * a0y + a0z * a0z, a1x * a1x + a1y * a1y + a1z * a1z));
       batch.Mass[j] = batch.MassScale[j] * std::abs(det);
       batch.Spread[j] = 0.5f * (xx + yy);
-      // Two-sided lighting: the normal turned towards the viewer, normalized.
-      const float scale = (backFacing ? -1.0f : 1.0f) / std::sqrt(nx * nx + ny * ny + nz * nz);
+      // Normalized, not turned: two-sided lighting turns the filtered normal (AddNormal).
+      const float scale = 1.0f / std::sqrt(nx * nx + ny * ny + nz * nz);
       batch.NX[j] = scale * nx;
       batch.NY[j] = scale * ny;
       batch.NZ[j] = scale * nz;

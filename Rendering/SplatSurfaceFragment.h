@@ -42,6 +42,22 @@ inline bool FullyCoveredOpaque(const SurfaceFragment& f, float full)
   return f.Weight >= full && f.Alpha >= OpaqueAlpha * f.Weight;
 }
 
+/**
+ * Adds w times a normal to a running sum, turned to the sum's side. Normals are added as they
+ * come, unturned towards the viewer: a scan's normals, estimated without a consistent
+ * orientation, point either way, and turning each towards the viewer on its own bends the ones
+ * seen edge-on (the silhouettes) by up to a right angle; added on one side, they average to the
+ * surface's normal, which is turned towards the viewer once, when the fragment is shaded.
+ */
+inline void AddNormal(float* sum, float w, const float* normal)
+{
+  const float side = sum[0] * normal[0] + sum[1] * normal[1] + sum[2] * normal[2];
+  const float signedW = side < 0.0f ? -w : w;
+  sum[0] += signedW * normal[0];
+  sum[1] += signedW * normal[1];
+  sum[2] += signedW * normal[2];
+}
+
 /// A contribution with its own normal (a differential point's varies from pixel to pixel).
 inline void Accumulate(
   SurfaceFragment& f, float z, float w, const float* normal, const float* color, float alpha)
@@ -52,9 +68,7 @@ inline void Accumulate(
   f.Color[0] += w * color[0];
   f.Color[1] += w * color[1];
   f.Color[2] += w * color[2];
-  f.Normal[0] += w * normal[0];
-  f.Normal[1] += w * normal[1];
-  f.Normal[2] += w * normal[2];
+  AddNormal(f.Normal, w, normal);
 }
 
 inline SurfaceFragment NewFragment(
@@ -81,8 +95,8 @@ inline void AccumulateScaled(SurfaceFragment& f, const SurfaceFragment& sums, fl
   for (int c = 0; c < 3; ++c)
   {
     f.Color[c] += w * sums.Color[c];
-    f.Normal[c] += w * sums.Normal[c];
   }
+  AddNormal(f.Normal, w, sums.Normal);
 }
 
 inline SurfaceFragment Scaled(const SurfaceFragment& sums, float w, float z)

@@ -165,6 +165,7 @@ struct vtkOpenGLSurfaceSplatRasterizer::Internals
   vtkNew<vtkTextureObject> WeightedColor;
   vtkNew<vtkTextureObject> WeightedNormal;
   vtkNew<vtkTextureObject> WeightedDepth;
+  vtkNew<vtkTextureObject> NearestNormal; // the visibility pass's, attached for that pass only
   vtkNew<vtkTextureObject> LayerColor;
   vtkNew<vtkTextureObject> LayerDepth;
   vtkNew<vtkTextureObject> SceneDepth;
@@ -254,7 +255,7 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::Allocate(
     depth->AllocateDepth(width, height, vtkTextureObject::Float32);
   }
   for (vtkTextureObject* color : { this->WeightedColor.Get(), this->WeightedNormal.Get(),
-         this->LayerColor.Get() })
+         this->NearestNormal.Get(), this->LayerColor.Get() })
   {
     SetNearest(color, window);
     color->Allocate2D(width, height, 4, VTK_FLOAT);
@@ -465,7 +466,6 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     internal.StripArray.Array->Bind();
     internal.SplatFramebuffer->Bind();
     internal.SplatFramebuffer->AddDepthAttachment(depth);
-    internal.SplatFramebuffer->ActivateDrawBuffers(3);
     if (layer > 0)
     {
       previous->Activate();
@@ -475,12 +475,14 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     }
     program->SetUniformi("peel", layer > 0);
 
-    // Pass 1: visibility.
+    // Pass 1: visibility, and the nearest splat's normal (the one pass 2 turns normals to).
+    internal.SplatFramebuffer->AddColorAttachment(3, internal.NearestNormal);
+    internal.SplatFramebuffer->ActivateDrawBuffer(3);
     state->vtkglDisable(GL_BLEND);
     state->vtkglEnable(GL_DEPTH_TEST);
     state->vtkglDepthFunc(GL_LESS);
     state->vtkglDepthMask(GL_TRUE);
-    state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     state->vtkglClear(GL_DEPTH_BUFFER_BIT);
     program->SetUniformi("splatPass", VisibilityPass);
     VTK_SCOPED_RENDER_EVENT2("visibility, layer " << layer, timer, visibilityEvent);
@@ -490,6 +492,9 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     GLuint anySamples = 0;
     glGetQueryObjectuiv(internal.Query, GL_QUERY_RESULT, &anySamples);
     visibilityEvent.Stop();
+    // Read, not drawn, from here: detached so that it is no feedback loop.
+    internal.SplatFramebuffer->RemoveColorAttachment(3);
+    internal.SplatFramebuffer->ActivateDrawBuffers(3);
     if (!anySamples)
     {
       if (layer > 0)
@@ -501,7 +506,8 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     }
 
     // Pass 2: attributes, added up within the visibility depth.
-    state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    internal.NearestNormal->Activate();
+    program->SetUniformi("nearestNormal", internal.NearestNormal->GetTextureUnit());
     state->vtkglClear(GL_COLOR_BUFFER_BIT);
     state->vtkglDepthFunc(GL_LEQUAL);
     state->vtkglDepthMask(GL_FALSE);
@@ -511,6 +517,7 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     VTK_SCOPED_RENDER_EVENT2("attributes, layer " << layer, timer, attributeEvent);
     internal.Draw();
     attributeEvent.Stop();
+    internal.NearestNormal->Deactivate();
     internal.StripArray.Array->Release();
     if (layer > 0)
     {
@@ -673,7 +680,7 @@ void vtkOpenGLSurfaceSplatRasterizer::ReleaseGraphicsResources(vtkWindow* window
   for (vtkTextureObject* texture :
     { internal.VisibilityDepth[0].Get(), internal.VisibilityDepth[1].Get(),
       internal.WeightedColor.Get(), internal.WeightedNormal.Get(), internal.WeightedDepth.Get(),
-      internal.LayerColor.Get(), internal.LayerDepth.Get(), internal.SceneDepth.Get() })
+      internal.NearestNormal.Get(), internal.LayerColor.Get(), internal.LayerDepth.Get(), internal.SceneDepth.Get() })
   {
     texture->ReleaseGraphicsResources(window);
   }

@@ -25,6 +25,10 @@
  *   of h gives a partition of unity.
  * Points with a non-finite position, normal, radius or axis, a zero normal, a non-positive radius
  * or parallel axes are skipped and counted (GetNumberOfSkippedPoints), never drawn.
+ * Normals may point either way (scans estimate them without a consistent orientation): they
+ * are filtered on one side and the filtered normal is turned towards the viewer (two-sided
+ * lighting), so that the edge-on splats of a silhouette, whose normals are nearly
+ * perpendicular to the view, do not bend it.
  *
  * Differential points (SetPrimitiveToDifferentialPoints; Kalaiah and Varshney, *Modeling and
  * Rendering of Points with Local Geometry*, 2003), as vtkDifferentialPointGenerator makes them:

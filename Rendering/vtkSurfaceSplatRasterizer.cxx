@@ -71,7 +71,7 @@ struct vtkSurfaceSplatRasterizer::ScreenSplat
   int X0, X1, Y0, Y1; // inclusive pixel bounds
   float DepthNumerator[3];
   float DepthDenominator[3];
-  float Normal[3]; // eye space, facing the viewer
+  float Normal[3]; // eye space, either side (AddNormal)
   float Color[3];
   float Alpha;
 };
@@ -86,7 +86,7 @@ struct vtkSurfaceSplatRasterizer::DifferentialSplat
   float T[3], TRay[3];
   float ExtentU, ExtentV;       // the axes' lengths in model units
   float CurvatureU, CurvatureV; // in inverse model units
-  float U[3], V[3]; // unit eye-space principal directions, negated with a back-facing normal
+  float U[3], V[3]; // unit eye-space principal directions
 
   // Narrows [xBegin, xEnd] to the pixels of row y (centers at py) that may lie inside the
   // rectangle, where the splat's depth is numerator / denominator (affine in the pixel), so
@@ -203,7 +203,7 @@ using DifferentialSplat = vtkSurfaceSplatRasterizer::DifferentialSplat;
 // lambda_u, lambda_v.
 void SetUpDifferentialSplat(const splat::PixelRays& rays, const glm::dvec3& p,
   const glm::dvec3& a0, const glm::dvec3& a1, double extentU, double extentV,
-  const float* curvatures, bool backFacing, DifferentialSplat& d)
+  const float* curvatures, DifferentialSplat& d)
 {
   // The dual basis of the axes: (X - p).b0 and (X - p).b1 are X's coordinates in axis units.
   const glm::dmat2 inverseGram = glm::inverse(
@@ -215,10 +215,8 @@ void SetUpDifferentialSplat(const splat::PixelRays& rays, const glm::dvec3& p,
   const glm::dvec3 s1 = b0 * rays.Direction;
   const glm::dvec3 t0 = b1 * rays.Origin - glm::dvec3(0.0, 0.0, glm::dot(b1, p));
   const glm::dvec3 t1 = b1 * rays.Direction;
-  // Turned with the normal towards the viewer, they turn the predicted normal with it.
-  const double sign = backFacing ? -1.0 : 1.0;
-  const glm::dvec3 u = sign * glm::normalize(a0);
-  const glm::dvec3 v = sign * glm::normalize(a1);
+  const glm::dvec3 u = glm::normalize(a0);
+  const glm::dvec3 v = glm::normalize(a1);
   for (int c = 0; c < 3; ++c)
   {
     d.S[c] = static_cast<float>(s0[c]);
@@ -292,6 +290,11 @@ glm::vec4 vtkSurfaceSplatRasterizer::ShadeFragment(const Fragment& f, int x, int
   glm::vec3 normal(f.Normal[0], f.Normal[1], f.Normal[2]);
   const float length = glm::length(normal);
   normal = length > 0.0f ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
+  // Two-sided lighting: the filtered normal (AddNormal) turned towards the viewer.
+  if (glm::dot(normal, frame.RayDirection * pixel) > 0.0f)
+  {
+    normal = -normal;
+  }
   const glm::vec3 color = glm::vec3(f.Color[0], f.Color[1], f.Color[2]) / f.Weight;
   const glm::vec3 shaded = glm::clamp(
     splat::Shade(*frame.Lights, *frame.Surface, color, position, normal, !frame.Perspective),
@@ -564,10 +567,9 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
             {
               continue;
             }
-            glm::dvec3 normal = glm::normalize(normalToEye * glm::dvec3(n[0], n[1], n[2]));
+            const glm::dvec3 normal = glm::normalize(normalToEye * glm::dvec3(n[0], n[1], n[2]));
             const glm::dvec3 view = rays.Perspective ? p : glm::dvec3(0.0, 0.0, -1.0);
-            const bool backFacing = glm::dot(normal, view) > 0.0;
-            if (backFacing && cullBackFaces)
+            if (cullBackFaces && glm::dot(normal, view) > 0.0)
             {
               reason = BackFacing;
               continue;
@@ -614,11 +616,6 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
             s.Threshold =
               static_cast<float>(depthThreshold * std::max(glm::length(a0), glm::length(a1)));
 
-            // Two-sided lighting: turn every normal towards the viewer before it is filtered.
-            if (backFacing)
-            {
-              normal = -normal;
-            }
             for (int c = 0; c < 3; ++c)
             {
               s.Normal[c] = static_cast<float>(normal[c]);
@@ -629,7 +626,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
             {
               SetUpDifferentialSplat(rays, p, a0, a1, glm::length(glm::dvec3(axis0[0], axis0[1],
                 axis0[2])), glm::length(glm::dvec3(axis1[0], axis1[1], axis1[2])),
-                source.Curvatures + 2 * i, backFacing, differentials[k]);
+                source.Curvatures + 2 * i, differentials[k]);
             }
           }
         }

@@ -7,9 +7,12 @@
 // far. The weight is the screen-space EWA kernel of paper 000 eq. (6), set up once per splat;
 // a differential point's normal is the one it predicts where the ray meets its tangent plane
 // (SplatDifferentialPointNormal.h), and unfiltered, its rectangle has weight 1.
-//   pass 0, visibility: depth of the intersection plus the splat's threshold, no color;
+//   pass 0, visibility: depth of the intersection plus the splat's threshold, and the nearest
+//           splat's normal;
 //   pass 1, attributes: weight-times-color, weight, weight-times-normal, weight-times-opacity
-//           and weight-times-depth, added up over the splats within the threshold of pass 0;
+//           and weight-times-depth, added up over the splats within the threshold of pass 0,
+//           each normal turned to the side of the nearest one (the CPU's AddNormal turns it to
+//           the running sum's, which blending cannot read);
 //   pass 2, selection: the hardware selector's color, at the window depth of the intersection
 //           pulled forward by a share of the threshold that shrinks with the kernel's exponent.
 
@@ -45,6 +48,7 @@ uniform vec2 depthProjectionW; // (P23, P33)
 uniform int peel;
 uniform sampler2D previousDepth;
 uniform sampler2D layersInFront;
+uniform sampler2D nearestNormal; // pass 0's normal, read by pass 1
 // Translucent splats: fragments behind the opaque scene already drawn are hidden.
 uniform int sceneTest;
 uniform sampler2D sceneDepth;
@@ -156,6 +160,7 @@ void main()
   if (splatPass == 0)
   {
     gl_FragDepth = linearDepth(t + splatThreshold);
+    gl_FragData[0] = vec4(splatNormal, 0.0);
     return;
   }
   vec3 normal = splatNormal;
@@ -165,6 +170,10 @@ void main()
     float g = differentialNormalScale(splatCurvature, uv);
     normal = normalize(splatNormal - g * (splatCurvature.x * uv.x * normalize(splatAxis0) +
       splatCurvature.y * uv.y * normalize(splatAxis1)));
+  }
+  if (dot(normal, texelFetch(nearestNormal, texel, 0).xyz) < 0.0)
+  {
+    normal = -normal;
   }
   float w = rectangle ? 1.0 : splatAmplitude * exp(-beta);
   gl_FragDepth = depth;

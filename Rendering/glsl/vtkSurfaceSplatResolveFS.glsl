@@ -3,7 +3,8 @@
 // Normalization and deferred shading of one peeled layer of splats (paper 000, section 5): the
 // summed attributes divided by the summed weights, lit with VTK's lights and the actor's
 // property (vtkSplatLighting.glsl), opacity times coverage (section 7), written
-// premultiplied. The first layer also writes its window depth.
+// premultiplied. Two-sided lighting: the summed normal, whose terms were added on one side
+// (SplatSurfaceFragment.h's AddNormal), is turned towards the viewer. The first layer also writes its window depth.
 
 in vec2 texCoord;
 uniform sampler2D weightedColor;   // (w r, w g, w b, w)
@@ -34,6 +35,10 @@ void main()
   vec3 position = rayOrigin * pixel + t * (rayDirection * pixel);
   float normalLength = length(normalSum.xyz);
   vec3 normal = normalLength > 0.0 ? normalSum.xyz / normalLength : vec3(0.0, 0.0, 1.0);
+  if (dot(normal, rayDirection * pixel) > 0.0)
+  {
+    normal = -normal;
+  }
   vec3 shaded = clamp(shade(colorSum.rgb / weight, position, normal), 0.0, 1.0);
   float alpha = normalSum.a / weight;
   if (edgeAntialiasing != 0)

@@ -83,8 +83,7 @@ void main()
 
   vec3 n = normalize(normalToEye * normal);
   vec3 view = perspective != 0 ? p : vec3(0.0, 0.0, -1.0);
-  bool backFacing = dot(n, view) > 0.0;
-  if (backFacing && cullBackFaces != 0)
+  if (cullBackFaces != 0 && dot(n, view) > 0.0)
   {
     cull();
     return;
@@ -153,10 +152,10 @@ void main()
   }
 
   recordBox = vec4(lo, hi);
-  recordCenter = vec4(center, backFacing ? -curvature : curvature);
+  recordCenter = vec4(center, curvature);
   recordConic = vec4(conic, amplitude);
   recordPoint = vec4(p, depthThreshold * max(length(a0), length(a1)));
-  recordNormal = vec4(backFacing ? -n : n, 0.0); // two-sided lighting
+  recordNormal = vec4(n, 0.0); // either side: the attribute pass turns it (AddNormal)
   recordAxis0 = vec4(a0, length(axis0));
   recordAxis1 = vec4(a1, length(axis1));
   recordColor = color;

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <vector>
 
 using namespace splat_test;
@@ -74,6 +75,108 @@ TEST(SurfaceSplatRasterizer, SliversGiveWayInFullLayers)
   EXPECT_TRUE(inserted);
   EXPECT_EQ(count, 2);
   EXPECT_EQ(f[1].Depth, 2.0f);
+}
+
+// Normals of either orientation, as scans estimate them: AddNormal sums them on one side, and
+// a lit unit sphere of surfels comes out the same with random normal signs as with outward
+// normals, shaded as the true sphere up to and across its silhouette. Turning each splat's
+// normal towards the viewer before filtering (what the rasterizer did) bent the normals of the
+// silhouette's pixels towards the eye: a mean error of 0.071 there, 0.042 now.
+TEST(SurfaceSplatRasterizer, NormalsAddUpOnOneSide)
+{
+  const float up[3] = { 0.0f, 0.6f, 0.8f };
+  const float down[3] = { 0.0f, -0.6f, -0.8f };
+  float sum[3] = { 0.0f, 0.0f, 0.0f };
+  splat::AddNormal(sum, 1.0f, up);
+  splat::AddNormal(sum, 0.5f, down);
+  EXPECT_FLOAT_EQ(sum[1], 0.9f);
+  EXPECT_FLOAT_EQ(sum[2], 1.2f);
+
+  // Fibonacci points on the unit sphere, surfels of radius 1.5 times their spacing.
+  const int n = 2000;
+  const float radius = 1.5f * std::sqrt(4.0f * 3.14159265f / n);
+  std::vector<double> positions;
+  std::vector<float> outward, randomSigns, axes0, axes1, colors(3 * n, 1.0f);
+  const double distance = 4.0;
+  for (int i = 0; i < n; ++i)
+  {
+    const double z = 1.0 - (2.0 * i + 1.0) / n;
+    const double phi = 2.39996322972865332 * i;
+    const glm::dvec3 p(std::sqrt(1.0 - z * z) * std::cos(phi),
+      std::sqrt(1.0 - z * z) * std::sin(phi), z);
+    const glm::dvec3 a0 = glm::normalize(glm::cross(p, std::abs(z) < 0.9
+        ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(1.0, 0.0, 0.0)));
+    const glm::dvec3 a1 = glm::cross(p, a0);
+    const float sign = (i * 7919) % 3 == 0 ? -1.0f : 1.0f;
+    for (int c = 0; c < 3; ++c)
+    {
+      positions.push_back(p[c]);
+      outward.push_back(static_cast<float>(p[c]));
+      randomSigns.push_back(sign * static_cast<float>(p[c]));
+      axes0.push_back(radius * static_cast<float>(a0[c]));
+      axes1.push_back(radius * static_cast<float>(a1[c]));
+    }
+  }
+  // A light from the eye: a pixel's value is 255 times its normal's eye-space z.
+  std::vector<splat::Light> lights(1);
+  splat::Material material = Unlit();
+  const int size = 160;
+  auto render = [&](const std::vector<float>& normals)
+  {
+    vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+    rasterizer->Render(vtkSurfaceSplatRasterizer::Surfels::Of(positions, normals, axes0, axes1,
+                         colors),
+      FrontoParallelCamera(distance, size), lights, material);
+    return rasterizer->GetColors();
+  };
+  // Mean error against the true sphere's shading (unpremultiplied) over the covered pixels of
+  // its rim (normals beyond 70 degrees from the view ray) and beside it.
+  auto rimError = [&](const std::vector<std::uint8_t>& rgba)
+  {
+    const double t = std::tan(glm::radians(15.0));
+    double error = 0.0;
+    int count = 0;
+    for (int y = 0; y < size; ++y)
+    {
+      for (int x = 0; x < size; ++x)
+      {
+        const glm::dvec3 ray = glm::normalize(glm::dvec3(
+          (2.0 * (x + 0.5) / size - 1.0) * t, (2.0 * (y + 0.5) / size - 1.0) * t, -1.0));
+        const glm::dvec3 center(0.0, 0.0, -distance);
+        const double b = glm::dot(ray, center);
+        const double discriminant = b * b - (glm::dot(center, center) - 1.0);
+        const std::uint8_t* pixel = &rgba[4 * (y * size + x)];
+        if (pixel[3] == 0)
+        {
+          continue;
+        }
+        // Beside the sphere, the silhouette's shading: its normals n have n.z = 1 / distance.
+        double expected = 1.0 / distance;
+        if (discriminant > 0.0)
+        {
+          const glm::dvec3 normal = (b - std::sqrt(discriminant)) * ray - center;
+          if (-glm::dot(normal, ray) > 0.35)
+          {
+            continue;
+          }
+          expected = normal.z;
+        }
+        error += std::abs(static_cast<double>(pixel[1]) / pixel[3] - expected);
+        ++count;
+      }
+    }
+    EXPECT_GT(count, 100);
+    return error / std::max(count, 1);
+  };
+  const std::vector<std::uint8_t> image = render(outward);
+  const std::vector<std::uint8_t> unoriented = render(randomSigns);
+  for (std::size_t i = 0; i < image.size(); ++i)
+  {
+    ASSERT_LE(std::abs(image[i] - unoriented[i]), 1) << "byte " << i;
+  }
+  const double error = rimError(image);
+  std::cout << "rim shading error: " << error << "\n";
+  EXPECT_LT(error, 0.055);
 }
 
 // Before normalization, kernels of surfels on a regular grid with radius = spacing sum to 1
