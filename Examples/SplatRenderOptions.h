@@ -67,8 +67,8 @@ Options (a value follows as --name VALUE or --name=VALUE):
                           screen-space filter (default ewa, exact EWA; approximate is the
                           OpenGL backend's cheaper filter, the CPU draws EWA for it)
   --radius-scale F        vtkSurfelGenerator RadiusScale: splat radius / point spacing (default 1)
-  --cutoff F              Cutoff on the kernel exponent (default: the mapper's, automatic 0.5
-                          or 1 for surface splats, 4.5 for volumes)
+  --cutoff F              Cutoff on the kernel exponent (default: the mapper's, automatic 0.5,
+                          1 or 2 for surface splats, 4.5 for volumes)
   --ordering auto|blended|clipped|single-axis|depth-sorted
                           volumes: vtkVolumeSplatMapper's visibility ordering (default auto:
                           depth-sorted for captures, blended for density volumes)

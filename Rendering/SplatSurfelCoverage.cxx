@@ -32,8 +32,8 @@ glm::dvec3 Vec(const float* v)
 namespace splat
 {
 
-double UncoveredShare(
-  const vtkSurfaceSplatRasterizer::Surfels& surfels, double cutoff, double coverageThreshold)
+double UncoveredShare(const vtkSurfaceSplatRasterizer::Surfels& surfels, double cutoff,
+  double referenceCutoff, double coverageThreshold)
 {
   const std::size_t count = surfels.Count;
   double largestAxis = 0.0;
@@ -59,12 +59,11 @@ double UncoveredShare(
   locator->SetDataSet(cloud);
   locator->BuildLocator();
 
-  const double paperCutoff = 1.0;
-  const double reach = std::sqrt(std::max(cutoff, paperCutoff)) * largestAxis;
-  const double paperFull = FullCoverageWeight(coverageThreshold, paperCutoff);
+  const double reach = std::sqrt(std::max(cutoff, referenceCutoff)) * largestAxis;
+  const double referenceFull = FullCoverageWeight(coverageThreshold, referenceCutoff);
   const double full = FullCoverageWeight(coverageThreshold, cutoff);
   const std::size_t sampled = std::min(count, SampledSurfels);
-  std::atomic<vtkIdType> coveredByPaper(0), uncovered(0);
+  std::atomic<vtkIdType> coveredByReference(0), uncovered(0);
   vtkSMPThreadLocalObject<vtkIdList> neighborLists;
   vtkSMPTools::For(0, static_cast<vtkIdType>(sampled),
     [&](vtkIdType begin, vtkIdType end)
@@ -85,7 +84,7 @@ double UncoveredShare(
           const double angle = 2.39996322972865332 * k + 0.7 * s;
           const glm::dvec3 x = p + radius * (std::cos(angle) * a0 + std::sin(angle) * a1);
           locator->FindPointsWithinRadius(reach, &x[0], neighbors);
-          double paperWeight = 0.0, weight = 0.0;
+          double referenceWeight = 0.0, weight = 0.0;
           for (vtkIdType m = 0; m < neighbors->GetNumberOfIds(); ++m)
           {
             const std::size_t j = static_cast<std::size_t>(neighbors->GetId(m));
@@ -104,24 +103,24 @@ double UncoveredShare(
             const double u1 = glm::dot(d, b1) / glm::dot(b1, b1);
             const double beta = u0 * u0 + u1 * u1;
             const double w = 2.0 * InverseTwoPi * std::exp(-beta);
-            paperWeight += beta < paperCutoff ? w : 0.0;
+            referenceWeight += beta < referenceCutoff ? w : 0.0;
             weight += beta < cutoff ? w : 0.0;
-            if (paperWeight >= paperFull && weight >= full)
+            if (referenceWeight >= referenceFull && weight >= full)
             {
               break; // covered at both cutoffs: on coincident points, after a few neighbors
             }
           }
-          if (paperWeight >= paperFull)
+          if (referenceWeight >= referenceFull)
           {
             ++covered;
             holes += weight < full;
           }
         }
       }
-      coveredByPaper += covered;
+      coveredByReference += covered;
       uncovered += holes;
     });
-  return coveredByPaper > 0 ? static_cast<double>(uncovered) / coveredByPaper : 0.0;
+  return coveredByReference > 0 ? static_cast<double>(uncovered) / coveredByReference : 0.0;
 }
 
 }

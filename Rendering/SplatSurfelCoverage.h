@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file SplatSurfelCoverage.h
- * @brief Whether a set of surfels still covers its surface at a tighter cutoff than the paper's.
+ * @brief Whether a set of surfels still covers its surface at a cutoff as it does at a wider one.
  *
  * A smaller cutoff blends fewer neighbors per pixel: sharper and faster on surfaces whose
  * surfels overlap well (mesh vertices with the radius of their longest edge, regular grids),
- * but it opens holes between scattered points whose radii only just reach their neighbors.
+ * but it opens holes between scattered points whose radii only just reach their neighbors,
+ * which a wider cutoff than the paper's closes.
  * The test is done once per surfel set, in object space (magnified, where holes show): at
  * sample points spread over the disks of some of the surfels, the summed kernel weights of
  * their neighbors, as a magnified splat draws them (e^-beta / pi for beta = |u|^2 in axis
@@ -23,14 +24,15 @@ namespace splat
 {
 
 /**
- * The share of the sample points covered at the paper's cutoff (1) that `cutoff` leaves
+ * The share of the sample points covered at `referenceCutoff` (wider) that `cutoff` leaves
  * uncovered, with `coverageThreshold` the full-coverage weight tau at the paper's cutoff
- * (scaled for others as vtkSurfaceSplatRasterizer does). Neighbors facing the other way or off
- * the sample's tangent plane by more than their size (the other side of a thin part) do not
- * count. 0 for sets without finite positive axes.
+ * (scaled for others as vtkSurfaceSplatRasterizer does). Sample points that the reference does
+ * not cover either are the surface's boundary, not holes. Neighbors facing the other way or
+ * off the sample's tangent plane by more than their size (the other side of a thin part) do
+ * not count. 0 for sets without finite positive axes.
  */
-double UncoveredShare(
-  const vtkSurfaceSplatRasterizer::Surfels& surfels, double cutoff, double coverageThreshold);
+double UncoveredShare(const vtkSurfaceSplatRasterizer::Surfels& surfels, double cutoff,
+  double referenceCutoff, double coverageThreshold);
 
 }
 

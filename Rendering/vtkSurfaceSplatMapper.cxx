@@ -62,25 +62,11 @@ struct vtkSurfaceSplatMapper::SurfelArrays
   vtkNew<vtkSurfelHierarchy> Hierarchy;
   vtkTimeStamp HierarchyTime;
 
-  // The share of the surface a tight cutoff leaves uncovered (SplatSurfelCoverage.h), for the
-  // cutoff and coverage threshold it was computed with.
-  double TightUncoveredShare = 0.0;
-  double CoverageCutoff = 0.0;
-  double CoverageThreshold = 0.0;
-  vtkTimeStamp CoverageTime;
-
-  double UncoveredShare(double cutoff, double coverageThreshold)
-  {
-    if (this->CoverageTime < this->BuildTime || cutoff != this->CoverageCutoff ||
-      coverageThreshold != this->CoverageThreshold)
-    {
-      this->TightUncoveredShare = splat::UncoveredShare(this->View(), cutoff, coverageThreshold);
-      this->CoverageCutoff = cutoff;
-      this->CoverageThreshold = coverageThreshold;
-      this->CoverageTime.Modified();
-    }
-    return this->TightUncoveredShare;
-  }
+  // The automatic cutoff (vtkSurfaceSplatMapper::ChooseCutoff), for the coverage threshold it
+  // was chosen with.
+  double AutomaticCutoff = 0.0;
+  double AutomaticThreshold = 0.0;
+  vtkTimeStamp AutomaticTime;
 
   const vtkSurfelHierarchy* UpdateHierarchy()
   {
@@ -225,9 +211,11 @@ void vtkSurfaceSplatMapper::SetCutoff(double cutoff)
 double vtkSurfaceSplatMapper::ChooseCutoff()
 {
   constexpr double Paper = 1.0;
+  // Each tried in turn, the next one up as the reference of what covering is.
   constexpr double Tight = 0.5;
-  // The share of the surface the tight cutoff may leave uncovered: holes in fewer samples are
-  // at the surface's boundary or too small to see.
+  constexpr double Wide = 2.0;
+  // The share of the surface a cutoff may leave uncovered: holes in fewer samples are at the
+  // surface's boundary or too small to see.
   constexpr double AcceptedHoles = 0.01;
   if (this->Cutoff > 0.0)
   {
@@ -237,10 +225,18 @@ double vtkSurfaceSplatMapper::ChooseCutoff()
   {
     return Paper;
   }
-  return this->Surfels->UncoveredShare(Tight, this->Rasterizer->GetCoverageThreshold()) <=
-      AcceptedHoles
-    ? Tight
-    : Paper;
+  SurfelArrays& surfels = *this->Surfels;
+  const double tau = this->Rasterizer->GetCoverageThreshold();
+  if (surfels.AutomaticTime < surfels.BuildTime || surfels.AutomaticThreshold != tau)
+  {
+    const vtkSurfaceSplatRasterizer::Surfels view = surfels.View();
+    surfels.AutomaticCutoff = splat::UncoveredShare(view, Tight, Paper, tau) <= AcceptedHoles
+      ? Tight
+      : splat::UncoveredShare(view, Paper, Wide, tau) <= AcceptedHoles ? Paper : Wide;
+    surfels.AutomaticThreshold = tau;
+    surfels.AutomaticTime.Modified();
+  }
+  return surfels.AutomaticCutoff;
 }
 
 //------------------------------------------------------------------------------

@@ -113,16 +113,18 @@ public:
    * 1/2 x^T M^-1 x < Cutoff. A larger cutoff blends more neighbors into each pixel: it costs
    * more and blurs more, but fills wider gaps between scattered points.
    *
-   * Default 0, automatic: 0.5 where the surfels still cover their surface at that cutoff, else
-   * the paper's 1 (SetCutoffToPaper). The test is done once per input, in object space, on
-   * samples of the surfels' disks (SplatSurfelCoverage.h): surfels on a mesh's vertices with
-   * the radius of their longest edge pass; scattered points whose radii only reach their
-   * nearest neighbors do not, nor does a grid whose radius is its spacing (its tight disks only
-   * touch, and the pixels between them would be partly transparent). Why 0.5: in
-   * `splat_report`'s tables (512x384, CPU), it is faster and more exact than 1 on every scene
-   * whose surfels cover at 0.5: RMSE 0.0290 against 0.0345 on the bunny, 0.0470 against 0.0568
-   * on the armadillo, 0.0796 against 0.0834 on the checkerboard, 25-30 % less time; on points
-   * scattered over the armadillo it leaves holes (0.0485 against 0.0320), and the test keeps 1.
+   * Default 0, automatic: 0.5 where the surfels still cover their surface at that cutoff,
+   * else the paper's 1 (SetCutoffToPaper) where they cover it at 1, else 2. The test is done
+   * once per input, in object space, on samples of the surfels' disks (SplatSurfelCoverage.h),
+   * each cutoff against the next one up: surfels on a mesh's vertices with the radius of their
+   * longest edge pass at 0.5; a grid whose radius is its spacing does not (its tight disks
+   * only touch, and the pixels between them would be partly transparent) but passes at 1;
+   * scattered points whose radii only reach their nearest neighbors pass at neither. Why: in
+   * `splat_report`'s tables (512x384, CPU), 0.5 is faster and more exact than 1 on every scene
+   * whose surfels cover at 0.5 (RMSE 0.0186 against 0.0237 on the bunny, 0.0339 against
+   * 0.0439 on the armadillo, 30-35 % less time); on points scattered over the armadillo 0.5
+   * leaves holes (0.0466) and 1 speckles of background (0.0276), which 2 closes (0.0239; 4
+   * gives 0.0237 in 20 % more time).
    * Differential points keep the paper's cutoff. GetLastCutoff() tells what the last render
    * used.
    */
