@@ -32,33 +32,44 @@ glm::dvec3 Vec(const float* v)
 namespace splat
 {
 
-double UncoveredShare(const vtkSurfaceSplatRasterizer::Surfels& surfels, double cutoff,
-  double referenceCutoff, double coverageThreshold)
+SurfelCoverage::SurfelCoverage(const vtkSurfaceSplatRasterizer::Surfels& surfels)
+  : Surfels(surfels)
 {
-  const std::size_t count = surfels.Count;
-  double largestAxis = 0.0;
-  for (std::size_t i = 0; i < 3 * count; i += 3)
+  for (std::size_t i = 0; i < 3 * surfels.Count; i += 3)
   {
-    largestAxis = std::max({ largestAxis, glm::length(Vec(surfels.Axes0 + i)),
+    this->LargestAxis = std::max({ this->LargestAxis, glm::length(Vec(surfels.Axes0 + i)),
       glm::length(Vec(surfels.Axes1 + i)) });
   }
-  if (count == 0 || !(largestAxis > 0.0 && std::isfinite(largestAxis)))
+  if (surfels.Count == 0 || !(this->LargestAxis > 0.0 && std::isfinite(this->LargestAxis)))
   {
-    return 0.0;
+    this->LargestAxis = 0.0;
+    return;
   }
   // The positions in place, as the points of a data set for the locator.
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
   coordinates->SetArray(const_cast<double*>(surfels.Positions),
-    static_cast<vtkIdType>(3 * count), /*save=*/1);
+    static_cast<vtkIdType>(3 * surfels.Count), /*save=*/1);
   vtkNew<vtkPoints> points;
   points->SetData(coordinates);
   vtkNew<vtkPolyData> cloud;
   cloud->SetPoints(points);
-  vtkNew<vtkStaticPointLocator> locator;
-  locator->SetDataSet(cloud);
-  locator->BuildLocator();
+  this->Locator->SetDataSet(cloud);
+  this->Locator->BuildLocator();
+}
 
+//------------------------------------------------------------------------------
+double SurfelCoverage::UncoveredShare(
+  double cutoff, double referenceCutoff, double coverageThreshold) const
+{
+  if (this->LargestAxis == 0.0)
+  {
+    return 0.0;
+  }
+  const vtkSurfaceSplatRasterizer::Surfels& surfels = this->Surfels;
+  const std::size_t count = surfels.Count;
+  vtkStaticPointLocator* locator = this->Locator;
+  const double largestAxis = this->LargestAxis;
   const double reach = std::sqrt(std::max(cutoff, referenceCutoff)) * largestAxis;
   const double referenceFull = FullCoverageWeight(coverageThreshold, referenceCutoff);
   const double full = FullCoverageWeight(coverageThreshold, cutoff);

@@ -18,22 +18,37 @@
 #ifndef SplatSurfelCoverage_h
 #define SplatSurfelCoverage_h
 
+#include "vtkNew.h"                    // For vtkNew
+#include "vtkStaticPointLocator.h"     // For the locator
 #include "vtkSurfaceSplatRasterizer.h" // For Surfels
 
 namespace splat
 {
 
 /**
- * The share of the sample points covered at `referenceCutoff` (wider) that `cutoff` leaves
- * uncovered, with `coverageThreshold` the full-coverage weight tau at the paper's cutoff
- * (scaled for others as vtkSurfaceSplatRasterizer does). Sample points that the reference does
- * not cover either are the surface's boundary, not holes. Neighbors facing the other way or
- * off the sample's tangent plane by more than their size (the other side of a thin part) do
- * not count. 0 for sets without finite positive axes.
+ * The coverage tests of a set of surfels, sharing one point locator over their positions (the
+ * arrays are referenced, not copied: they must outlive it).
  */
-double UncoveredShare(const vtkSurfaceSplatRasterizer::Surfels& surfels, double cutoff,
-  double referenceCutoff, double coverageThreshold);
+class SurfelCoverage
+{
+public:
+  explicit SurfelCoverage(const vtkSurfaceSplatRasterizer::Surfels& surfels);
 
+  /**
+   * The share of the sample points covered at `referenceCutoff` (wider) that `cutoff` leaves
+   * uncovered, with `coverageThreshold` the full-coverage weight tau at the paper's cutoff
+   * (scaled for others as vtkSurfaceSplatRasterizer does). Sample points that the reference
+   * does not cover either are the surface's boundary, not holes. Neighbors facing the other
+   * way or off the sample's tangent plane by more than their size (the other side of a thin
+   * part) do not count. 0 for sets without finite positive axes.
+   */
+  double UncoveredShare(double cutoff, double referenceCutoff, double coverageThreshold) const;
+
+private:
+  const vtkSurfaceSplatRasterizer::Surfels Surfels;
+  double LargestAxis = 0.0;
+  vtkNew<vtkStaticPointLocator> Locator;
+};
 }
 
 #endif

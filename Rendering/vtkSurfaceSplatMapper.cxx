@@ -229,10 +229,10 @@ double vtkSurfaceSplatMapper::ChooseCutoff()
   const double tau = this->Rasterizer->GetCoverageThreshold();
   if (surfels.AutomaticTime < surfels.BuildTime || surfels.AutomaticThreshold != tau)
   {
-    const vtkSurfaceSplatRasterizer::Surfels view = surfels.View();
-    surfels.AutomaticCutoff = splat::UncoveredShare(view, Tight, Paper, tau) <= AcceptedHoles
+    const splat::SurfelCoverage coverage(surfels.View());
+    surfels.AutomaticCutoff = coverage.UncoveredShare(Tight, Paper, tau) <= AcceptedHoles
       ? Tight
-      : splat::UncoveredShare(view, Paper, Wide, tau) <= AcceptedHoles ? Paper : Wide;
+      : coverage.UncoveredShare(Paper, Wide, tau) <= AcceptedHoles ? Paper : Wide;
     surfels.AutomaticThreshold = tau;
     surfels.AutomaticTime.Modified();
   }
