@@ -284,9 +284,10 @@ inline std::vector<Case> Cases(
 }
 
 // The cases of the volume scenes: vtkVolumeSplatMapper in every ordering mode on each backend
-// (the CPU's blended mode is the default), cutoffs other than the default, the sheets of image
-// data one by one (merging=off) and the exact per-kernel path (sheets=off) on the CPU, and VTK's
-// ray casters on the grid, sampling their rays every voxel spacing and every quarter of it.
+// (the CPU's blended mode is the default), the band-limit filter, cutoffs other than the
+// default, the sheets of image data one by one (merging=off) and the exact per-kernel path
+// (sheets=off) on the CPU, and VTK's ray casters on the grid, sampling their rays every voxel
+// spacing and every quarter of it.
 inline std::vector<Case> VolumeCases(const std::vector<std::string>& backends)
 {
   const int allThreads = AllThreads();
@@ -300,6 +301,7 @@ inline std::vector<Case> VolumeCases(const std::vector<std::string>& backends)
   };
   vtkNew<vtkVolumeSplatMapper> probe;
   const double defaultCutoff = probe->GetCutoff();
+  const int ordering = probe->GetOrderingMode();
   for (int backend : splatexample::ChosenSplatBackends(backends))
   {
     const std::string name = vtkSplatBackend::GetBackendAsString(backend);
@@ -313,6 +315,24 @@ inline std::vector<Case> VolumeCases(const std::vector<std::string>& backends)
                  : splatexample::OrderingModeName(mode),
         cpu ? allThreads : 0, cpu && defaults, nullptr, defaults };
       c.MakeVolume = splat(backend, mode, 0.0);
+      cases.push_back(c);
+    }
+    // The low-pass as a floor of the footprints' spread (BAND_LIMIT_FILTER) instead of a sum;
+    // on the CPU with the exact per-kernel path too, which merges no pairs of sheets.
+    for (bool sheets : { true, false })
+    {
+      if (!sheets && !cpu)
+      {
+        continue;
+      }
+      Case c{ "vtkVolumeSplatMapper", name, "filter",
+        sheets ? "filter=band-limit" : "filter=band-limit (sheets=off)", cpu ? allThreads : 0 };
+      c.MakeVolume = [=](const VolumeInputs& in) -> vtkSmartPointer<vtkAbstractVolumeMapper>
+      {
+        auto mapper = splatexample::VolumeSplat(in.Kernels, backend, ordering, 0.0, sheets);
+        mapper->SetFootprintFilterToBandLimit();
+        return mapper;
+      };
       cases.push_back(c);
     }
     if (cpu)

@@ -47,13 +47,16 @@ namespace splat
  * - Dilation: the 0.3 px^2 that captures were trained with, peak opacity unchanged;
  * - Antialiased: the dilation with the peak opacity scaled by sqrt(|V'| / |V' + 0.3 I|), which
  *   keeps each kernel's integral (gsplat's antialiased mode, Mip-Splatting's 2D filter) for
- *   views far from the training range.
+ *   views far from the training range;
+ * - BandLimit: LowPass's 1 px^2 as a floor of the covariance's eigenvalues instead of a sum
+ *   (FilteredCovariance), for density kernels: magnified ones keep their width.
  */
 enum class FootprintFilter
 {
   LowPass = 0,
   Dilation = 1,
-  Antialiased = 2
+  Antialiased = 2,
+  BandLimit = 3
 };
 
 /// The variance the reference rasterizer adds to every projected covariance, px^2.
@@ -67,10 +70,12 @@ constexpr float CaptureMinimumTransmittance = 1e-4f;
 /// The reference's clamp of the projected center's normalized device coordinates.
 constexpr double CaptureJacobianClamp = 1.3;
 
-/// The variance the filter adds to a footprint's 2D covariance, px^2.
+/// The variance the filter adds to a footprint's 2D covariance (BandLimit: its floor), px^2.
 inline double FilterVariance(FootprintFilter filter)
 {
-  return filter == FootprintFilter::LowPass ? 1.0 : CaptureDilation;
+  return filter == FootprintFilter::LowPass || filter == FootprintFilter::BandLimit
+    ? 1.0
+    : CaptureDilation;
 }
 
 /**

@@ -17,7 +17,8 @@
  *     int r dt = |J| G_{V'}(x - m), V' = (J W V W^T J^T) restricted to (x, y),
  *   with W the linear part of the model-to-eye map. Convolved with the unit screen low-pass
  *   filter it becomes |J| G_{V' + I}(x - m): splat::ResamplingKernel with
- *   Amplitude = |J| / (2 pi sqrt|V' + I|). A parallel view with s model units per pixel gives
+ *   Amplitude = |J| / (2 pi sqrt|V' + I|). The band limit instead raises V''s eigenvalues to
+ *   at least 1 (FilteredCovariance). A parallel view with s model units per pixel gives
  *   J = diag(1/s, 1/s, 1) and the footprint s^-2 G_{V'}(x/s) = G_{V_xy}(world offset): the
  *   orthographic projection of the Gaussian, as it must.
  * - The footprint is evaluated while the exponent 1/2 d^T (V' + I)^-1 d is below the cutoff c,
@@ -169,21 +170,56 @@ inline bool ProjectVolumeKernel(const glm::dmat4& eyeToClip, const glm::dvec2& v
 }
 
 /**
+ * A footprint's 2D covariance c (px^2) under a screen filter of variance `variance`: convolved
+ * with it (c + variance I), or with bandLimit each eigenvalue raised to at least `variance`
+ * (Botsch et al. 2005 take the larger of the splat's and the low-pass's radius as their
+ * approximation of EWA). Both band-limit minified footprints alike; the floor leaves footprints
+ * already wider than the filter as they are, where the sum blurs them by a pixel more. Written
+ * with the projector onto the smaller eigenvalue's direction, (c - l1 I) / (l2 - l1), as the
+ * GLSL does.
+ */
+template <typename Matrix>
+inline Matrix FilteredCovariance(const Matrix& c, typename Matrix::value_type variance,
+  bool bandLimit)
+{
+  using T = typename Matrix::value_type;
+  const Matrix identity(T(1));
+  if (!bandLimit)
+  {
+    return c + variance * identity;
+  }
+  const T mean = T(0.5) * (c[0][0] + c[1][1]);
+  const T half = T(0.5) * (c[0][0] - c[1][1]);
+  const T radius = std::sqrt(half * half + c[0][1] * c[0][1]);
+  const T l1 = mean + radius, l2 = mean - radius;
+  if (!(l2 < variance))
+  {
+    return c;
+  }
+  if (!(l1 > variance))
+  {
+    return variance * identity;
+  }
+  return c + ((variance - l2) / (l2 - l1)) * (c - l1 * identity);
+}
+
+/**
  * The footprint of a normalized Gaussian of eye-space covariance eyeCovariance (see the file
- * comment): Amplitude * exp(-beta) is its integral along the ray, low-pass filtered, per unit
- * of kernel mass. The filter's variance (1 px^2, the unit low-pass, unless another screen
- * filter is asked for: splat::FilterVariance) keeps the 2x2 covariance invertible for
+ * comment): Amplitude * exp(-beta) is its integral along the ray, screen-filtered, per unit of
+ * kernel mass. The filter (the unit low-pass, 1 px^2 convolved, unless another screen filter is
+ * asked for: splat::FilterVariance, FilteredCovariance) keeps the 2x2 covariance invertible for
  * degenerate kernels (zero scales, eigenvalue ratios of 1e12).
  */
 inline ResamplingKernel MakeVolumeFootprint(const VolumeProjection& projection,
-  const glm::dmat3& eyeCovariance, double cutoff, double filterVariance = 1.0)
+  const glm::dmat3& eyeCovariance, double cutoff, double filterVariance = 1.0,
+  bool bandLimit = false)
 {
   const glm::dmat3& J = projection.Jacobian;
   const glm::dmat3 rayCovariance = J * eyeCovariance * glm::transpose(J);
   ResamplingKernel k;
   k.Center = projection.Center;
   k.Cutoff = cutoff;
-  k.Covariance = glm::dmat2(rayCovariance) + glm::dmat2(filterVariance);
+  k.Covariance = FilteredCovariance(glm::dmat2(rayCovariance), filterVariance, bandLimit);
   const double detM = glm::determinant(k.Covariance);
   k.Conic = glm::inverse(k.Covariance);
   k.Amplitude = std::abs(glm::determinant(J)) * InverseTwoPi / std::sqrt(detM);

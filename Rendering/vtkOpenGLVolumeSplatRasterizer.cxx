@@ -525,6 +525,7 @@ void vtkOpenGLVolumeSplatRasterizer::Render(vtkRenderer* renderer,
     "captureRules", internal.Input.PeakOpacity && mode == Rasterizer::DEPTH_SORTED ? 1 : 0);
   program->SetUniformf("filterVariance", static_cast<float>(splat::FilterVariance(filter)));
   program->SetUniformi("antialiased", filter == splat::FootprintFilter::Antialiased ? 1 : 0);
+  program->SetUniformi("bandLimit", filter == splat::FootprintFilter::BandLimit ? 1 : 0);
   program->SetUniformi("sharedCovariance", internal.SharedCovariance ? 1 : 0);
   program->SetUniformMatrix3x3(
     "sharedEyeCovariance", const_cast<float*>(glm::value_ptr(sharedEyeCovariance)));

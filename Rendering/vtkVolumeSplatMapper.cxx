@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkVolumeSplatMapper.h"
 
+#include "SplatCaptureKernel.h"
 #include "SplatFloat8.h"
 #include "SplatMortonCode.h"
 #include "SplatSphericalHarmonics.h"
@@ -372,8 +373,8 @@ void vtkVolumeSplatMapper::SetOrderingMode(int mode)
 //------------------------------------------------------------------------------
 void vtkVolumeSplatMapper::SetFootprintFilter(int filter)
 {
-  filter =
-    std::min(std::max(filter, static_cast<int>(LOW_PASS_FILTER)), static_cast<int>(AUTOMATIC_FILTER));
+  filter = std::min(
+    std::max(filter, static_cast<int>(LOW_PASS_FILTER)), static_cast<int>(BAND_LIMIT_FILTER));
   if (filter != this->FootprintFilter)
   {
     this->FootprintFilter = filter;
@@ -1073,9 +1074,13 @@ void vtkVolumeSplatMapper::Render(vtkRenderer* ren, vtkVolume* volume)
   this->LastOrderingMode = this->OrderingMode != AUTOMATIC ? this->OrderingMode
                                                            : (capture ? DEPTH_SORTED : BLENDED);
   this->Rasterizer->SetOrderingMode(this->LastOrderingMode);
-  this->Rasterizer->SetFootprintFilter(this->FootprintFilter != AUTOMATIC_FILTER
-      ? this->FootprintFilter
-      : (capture ? DILATION_FILTER : LOW_PASS_FILTER));
+  const int filter = this->FootprintFilter != AUTOMATIC_FILTER
+    ? this->FootprintFilter
+    : (capture ? DILATION_FILTER : LOW_PASS_FILTER);
+  this->Rasterizer->SetFootprintFilter(filter != BAND_LIMIT_FILTER
+      ? filter
+      : static_cast<int>(capture ? splat::FootprintFilter::LowPass
+                                 : splat::FootprintFilter::BandLimit));
 
   int width, height, originX, originY;
   ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);

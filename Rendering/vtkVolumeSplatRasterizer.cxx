@@ -434,6 +434,7 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
   const double compensation = splat::TruncationCompensation(cutoff);
   const auto filter = static_cast<splat::FootprintFilter>(this->FootprintFilter);
   const double filterVariance = splat::FilterVariance(filter);
+  const bool bandLimit = filter == splat::FootprintFilter::BandLimit;
   // Normals go to eye coordinates by the inverse transpose.
   const glm::mat3 normalToEye(glm::transpose(glm::inverse(linear)));
   const float* viewColors = this->UpdateViewColors(camera, rays.Perspective);
@@ -464,7 +465,8 @@ void vtkVolumeSplatRasterizer::Render(const Camera& camera)
           continue;
         }
         const splat::ResamplingKernel footprint =
-          splat::MakeVolumeFootprint(projection, eyeCovariance, cutoff, filterVariance);
+          splat::MakeVolumeFootprint(
+            projection, eyeCovariance, cutoff, filterVariance, bandLimit);
         glm::ivec4 box;
         if (!splat::CoveredPixels(footprint.Center, footprint.HalfExtent, width, height, box))
         {
@@ -745,6 +747,7 @@ bool vtkVolumeSplatRasterizer::RenderSheets(const Camera& camera, const std::arr
     splat::EyeDepthsOfWindowDepths(glm::inverse(camera.EyeToClip), { nearestWindowDepth })[0];
   vtkVolumeSplatSheetCompositor* sheets = this->Internal->Sheets;
   sheets->SetMergePairs(this->SheetMerging);
+  sheets->SetFootprintFilter(this->FootprintFilter);
   if (!sheets->BeginFrame(input, camera, this->Cutoff, nearestSceneDepth,
         { used[0], used[1], used[2] }))
   {

@@ -113,11 +113,12 @@ public:
   ///@{
   /**
    * The screen filter of the footprints, a splat::FootprintFilter: LowPass (0, the default: the
-   * unit EWA low-pass), Dilation (1, the 0.3 px^2 that captures are trained with) or
+   * unit EWA low-pass), Dilation (1, the 0.3 px^2 that captures are trained with),
    * Antialiased (2, the dilation with the peak opacity compensated; as Dilation for density
-   * kernels, whose footprints keep their integral under any filter).
+   * kernels, whose footprints keep their integral under any filter) or BandLimit (3, the
+   * low-pass as a floor of the footprint's variance; for density kernels).
    */
-  vtkSetClampMacro(FootprintFilter, int, 0, 2);
+  vtkSetClampMacro(FootprintFilter, int, 0, 3);
   vtkGetMacro(FootprintFilter, int);
   ///@}
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkVolumeSplatSheetCompositor.h"
 
+#include "SplatCaptureKernel.h"
 #include "SplatVolumeKernel.h"
 #include "SplatVolumeLayerCompositor.h"
 
@@ -130,6 +131,7 @@ struct vtkVolumeSplatSheetCompositor::Internals
   // Per list: its sheets (entries in list order) and the sheets merged by pairs.
   std::array<Tables, 3> Sheets, Pairs;
   bool MergePairs = true;
+  splat::FootprintFilter Filter = splat::FootprintFilter::LowPass;
 
   // Per list, per frame.
   struct List
@@ -208,6 +210,8 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
   const glm::dmat3 indexToEye(this->IndexToEye);
   const glm::dvec2 viewport(this->View.Viewport);
   const double compensation = splat::TruncationCompensation(this->Cutoff);
+  const double filterVariance = splat::FilterVariance(this->Filter);
+  const bool bandLimit = this->Filter == splat::FootprintFilter::BandLimit;
   const double boxMass = std::erf(std::sqrt(this->Cutoff));
   const double boxCompensation = 1.0 / (boxMass * boxMass);
   const double volume = std::abs(glm::determinant(this->Input.GridAxes));
@@ -216,7 +220,7 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
   glm::dvec2 hi(-std::numeric_limits<double>::infinity());
   // Per layer and tile, the voxel's Gaussian integrated along the rays (their direction per
   // unit of index along the list's axis at the tile's center, t) as a density on the sheet's
-  // lattice, plus the screen's low-pass filter, a unit pixel, mapped onto the sheet there.
+  // lattice, under the screen's filter (splat::FilteredCovariance) mapped onto the sheet there.
   const int u = axes.x, v = axes.y, a = list;
   const glm::dvec2 tileSize = (extent + 1.0) / static_cast<double>(Tiles);
   l.TileScale = glm::vec2(1.0 / tileSize);
@@ -262,7 +266,10 @@ bool vtkVolumeSplatSheetCompositor::Internals::MakeList(int list)
       finest = std::max(finest,
         std::sqrt(splat::LargestEigenvalue(glm::transpose(sheetToPixels) * sheetToPixels)));
     }
-    lattice += pixelsToSheet * glm::transpose(pixelsToSheet);
+    lattice = pixelsToSheet *
+      splat::FilteredCovariance(sheetToPixels * lattice * glm::transpose(sheetToPixels),
+        filterVariance, bandLimit) *
+      glm::transpose(pixelsToSheet);
   }
   // The intermediate image's pixels per lattice unit of the front sheet: SamplesPerSigma along
   // the narrowest footprint there, so that the warp follows the footprints' shape, and
@@ -782,6 +789,18 @@ bool vtkVolumeSplatSheetCompositor::GetMergePairs() const
 }
 
 //------------------------------------------------------------------------------
+void vtkVolumeSplatSheetCompositor::SetFootprintFilter(int filter)
+{
+  this->Internal->Filter = static_cast<splat::FootprintFilter>(filter);
+}
+
+//------------------------------------------------------------------------------
+int vtkVolumeSplatSheetCompositor::GetFootprintFilter() const
+{
+  return static_cast<int>(this->Internal->Filter);
+}
+
+//------------------------------------------------------------------------------
 bool vtkVolumeSplatSheetCompositor::BeginFrame(const Kernels& kernels, const Camera& camera,
   double cutoff, double nearestSceneDepth, const std::array<bool, 3>& used)
 {
@@ -944,6 +963,7 @@ void vtkVolumeSplatSheetCompositor::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "MergePairs: " << this->GetMergePairs() << "\n";
+  os << indent << "FootprintFilter: " << this->GetFootprintFilter() << "\n";
   for (int list = 0; list < 3; ++list)
   {
     const glm::ivec2 size = this->GetIntermediateSize(list);

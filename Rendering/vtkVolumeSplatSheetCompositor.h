@@ -10,7 +10,7 @@
  * intermediate image on the plane of the front sheet: the central projection from the eye (or
  * the parallel one along the view direction) maps every sheet onto that plane by a scale and a
  * shift, under which a sheet's footprints are one 2D Gaussian, the integral of the voxel's 3D
- * Gaussian along the rays, low-pass filtered with the screen pixel mapped onto the sheet. In a
+ * Gaussian along the rays, screen-filtered with the screen pixel mapped onto the sheet. In a
  * perspective view the rays' direction changes across a sheet, so each sheet has a footprint per
  * tile of 4 x 4 (the rays through the tile's center). The intermediate image has 0.7 pixels per
  * standard deviation of the narrowest footprint of the front sheet (about one per voxel when a
@@ -89,6 +89,15 @@ public:
    */
   void SetMergePairs(bool merge);
   bool GetMergePairs() const;
+  ///@}
+
+  ///@{
+  /**
+   * The screen filter of the footprints, a splat::FootprintFilter (vtkVolumeSplatRasterizer's),
+   * from the next frame on. Default LowPass.
+   */
+  void SetFootprintFilter(int filter);
+  int GetFootprintFilter() const;
   ///@}
 
   /**

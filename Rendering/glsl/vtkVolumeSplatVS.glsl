@@ -30,6 +30,7 @@ uniform int peakOpacity;
 // Captures in their depth order: the rules of SplatCaptureKernel.h.
 uniform int captureRules;
 uniform float filterVariance; // FilterVariance(filter)
+uniform int bandLimit;        // the filter's variance as a floor (FilteredCovariance)
 uniform int antialiased;      // FootprintFilter::Antialiased
 uniform int sharedCovariance;
 uniform mat3 sharedEyeCovariance;
@@ -107,11 +108,34 @@ void main()
     J[axis] = vec3((d.xy - jacobianNdc * d.w) / c.w * halfSize, distanceGradient[axis]);
   }
 
-  // MakeVolumeFootprint: M = (J V J^T)_2x2 + the filter's variance.
+  // MakeVolumeFootprint: M = (J V J^T)_2x2 under the filter (FilteredCovariance): its
+  // variance added, or as a floor of the eigenvalues l1 >= l2, by way of the projector
+  // (C - l1 I) / (l2 - l1) onto the smaller one's direction.
   mat3 rayCovariance = J * V * transpose(J);
-  float mxx = rayCovariance[0][0] + filterVariance;
-  float mxy = rayCovariance[1][0];
-  float myy = rayCovariance[1][1] + filterVariance;
+  mat2 m2 = mat2(rayCovariance);
+  if (bandLimit == 0)
+  {
+    m2 += mat2(filterVariance);
+  }
+  else
+  {
+    float mean = 0.5 * (m2[0][0] + m2[1][1]);
+    float difference = 0.5 * (m2[0][0] - m2[1][1]);
+    float radius = sqrt(difference * difference + m2[1][0] * m2[1][0]);
+    float l1 = mean + radius;
+    float l2 = mean - radius;
+    if (!(l1 > filterVariance))
+    {
+      m2 = mat2(filterVariance);
+    }
+    else if (l2 < filterVariance)
+    {
+      m2 += (filterVariance - l2) / (l2 - l1) * (m2 - mat2(l1));
+    }
+  }
+  float mxx = m2[0][0];
+  float mxy = m2[1][0];
+  float myy = m2[1][1];
   float detM = mxx * myy - mxy * mxy;
   float strength = positionStrength.w;
   // PeakOpacityCompensation.

@@ -2,9 +2,9 @@
 // Unit tests of the EWA volume footprint (SplatVolumeKernel.h) and of the CPU volume rasterizer:
 // footprints against the exact integral along pixel rays, the Jacobian against finite
 // differences, the voxel kernels' partition of unity, scale + quaternion against covariance,
-// the near plane and degenerate kernels, list selection, the optical model on a slab,
-// determinism across thread counts, spherical-harmonic colors per view point, and the
-// per-pixel loops' exponentials.
+// the near plane and degenerate kernels, the band-limit filter's floor, list selection, the
+// optical model on a slab, determinism across thread counts, spherical-harmonic colors per view
+// point, and the per-pixel loops' exponentials.
 #include "SplatFloat8.h"
 #include "SplatVolumeKernel.h"
 #include "vtkVolumeSplatRasterizer.h"
@@ -216,6 +216,42 @@ TEST(SplatVolumeKernel, NearPlaneAndDegenerateKernels)
       for (int j = 0; j < 2; ++j)
         EXPECT_TRUE(std::isfinite(k.Conic[i][j]));
     EXPECT_TRUE(std::isfinite(k.Weight(projection.Center + glm::dvec2(0.3, -0.2))));
+  }
+}
+
+// The band limit raises each eigenvalue of the footprint's covariance to at least the filter's
+// variance and keeps its eigenvectors; the low-pass adds the variance; degenerate covariances
+// come out finite and invertible under both.
+TEST(SplatVolumeKernel, BandLimitFloorsTheEigenvalues)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> angle(0.0, Pi), logScale(-6.0, 3.0);
+  for (int n = 0; n < 200; ++n)
+  {
+    const double a = angle(random);
+    const glm::dvec2 e1(std::cos(a), std::sin(a)), e2(-e1.y, e1.x);
+    const double l1 = std::pow(10.0, logScale(random)), l2 = std::pow(10.0, logScale(random));
+    const glm::dmat2 c = l1 * glm::outerProduct(e1, e1) + l2 * glm::outerProduct(e2, e2);
+    const glm::dmat2 floored = splat::FilteredCovariance(c, 1.0, true);
+    EXPECT_NEAR(glm::dot(e1, floored * e1), std::max(l1, 1.0), 1e-9 * std::max(l1, 1.0));
+    EXPECT_NEAR(glm::dot(e2, floored * e2), std::max(l2, 1.0), 1e-9 * std::max(l2, 1.0));
+    EXPECT_NEAR(glm::dot(e1, floored * e2), 0.0, 1e-9 * std::max(std::max(l1, l2), 1.0));
+    const glm::dmat2 summed = splat::FilteredCovariance(c, 1.0, false);
+    EXPECT_NEAR(glm::dot(e1, summed * e1), l1 + 1.0, 1e-9 * (l1 + 1.0));
+  }
+  // Footprints already wider than a pixel are left as they are.
+  const glm::dmat2 wide(4.0, 1.0, 1.0, 3.0);
+  EXPECT_EQ(splat::FilteredCovariance(wide, 1.0, true), wide);
+  splat::VolumeProjection projection;
+  ASSERT_TRUE(
+    splat::ProjectVolumeKernel(Perspective(), Viewport, glm::dvec3(0.1, 0.2, -3.0), projection));
+  for (const glm::dmat3& degenerate : { glm::dmat3(0.0), Anisotropic(1e-6, 1.0, 1e-6),
+         Anisotropic(1.0, 1e-6, 1.0), Anisotropic(0.0, 0.0, 1.0) })
+  {
+    const splat::ResamplingKernel k =
+      splat::MakeVolumeFootprint(projection, degenerate, 4.5, 1.0, true);
+    EXPECT_TRUE(std::isfinite(k.Amplitude));
+    EXPECT_GE(glm::determinant(k.Covariance), 1.0 - 1e-6);
   }
 }
 
