@@ -240,7 +240,8 @@ def test_volume_mapper(servermanager):
     expected_entries = {
         "OrderingMode": {"Automatic": 4, "Blended": 0, "Clipped": 1, "SingleAxis": 2,
                          "DepthSorted": 3},
-        "FootprintFilter": {"Automatic": 3, "LowPass": 0, "Dilation": 1, "Antialiased": 2},
+        "FootprintFilter": {"Automatic": 3, "LowPass": 0, "Dilation": 1, "Antialiased": 2,
+                            "BandLimit": 4},
         "Backend": {"Auto": 0, "CPU": 1, "OpenGL": 2},
     }
     check_defaults_and_enumerations(
@@ -265,11 +266,11 @@ def test_volume_mapper(servermanager):
     for name, value in list(values.items()) + list(strings.items()):
         setattr(mapper, name, value)
     mapper.OrderingMode = "Clipped"
-    mapper.FootprintFilter = "Antialiased"
+    mapper.FootprintFilter = "BandLimit"
     mapper.Backend = "OpenGL"
     smproxy.UpdateVTKObjects()
     values["OrderingMode"] = 1
-    values["FootprintFilter"] = 2
+    values["FootprintFilter"] = 4
     values["Backend"] = 2
     for name, value in values.items():
         got = info_value(smproxy, name + "Info")
