@@ -284,7 +284,7 @@ inline std::vector<Case> Cases(
 }
 
 // The cases of the volume scenes: vtkVolumeSplatMapper in every ordering mode on each backend
-// (the CPU's blended mode is the default), the band-limit filter, cutoffs other than the
+// (the CPU's blended mode is the default), the low-pass filter, cutoffs other than the
 // default, the sheets of image data one by one (merging=off) and the exact per-kernel path
 // (sheets=off) on the CPU, and VTK's ray casters on the grid, sampling their rays every voxel
 // spacing and every quarter of it.
@@ -317,8 +317,9 @@ inline std::vector<Case> VolumeCases(const std::vector<std::string>& backends)
       c.MakeVolume = splat(backend, mode, 0.0);
       cases.push_back(c);
     }
-    // The low-pass as a floor of the footprints' spread (BAND_LIMIT_FILTER) instead of a sum;
-    // on the CPU with the exact per-kernel path too, which merges no pairs of sheets.
+    // EWA's low-pass added to the footprints (LOW_PASS_FILTER) rather than the default's floor
+    // of their spread; on the CPU with the exact per-kernel path too, which merges no pairs of
+    // sheets.
     for (bool sheets : { true, false })
     {
       if (!sheets && !cpu)
@@ -326,11 +327,11 @@ inline std::vector<Case> VolumeCases(const std::vector<std::string>& backends)
         continue;
       }
       Case c{ "vtkVolumeSplatMapper", name, "filter",
-        sheets ? "filter=band-limit" : "filter=band-limit (sheets=off)", cpu ? allThreads : 0 };
+        sheets ? "filter=low-pass" : "filter=low-pass (sheets=off)", cpu ? allThreads : 0 };
       c.MakeVolume = [=](const VolumeInputs& in) -> vtkSmartPointer<vtkAbstractVolumeMapper>
       {
         auto mapper = splatexample::VolumeSplat(in.Kernels, backend, ordering, 0.0, sheets);
-        mapper->SetFootprintFilterToBandLimit();
+        mapper->SetFootprintFilterToLowPass();
         return mapper;
       };
       cases.push_back(c);

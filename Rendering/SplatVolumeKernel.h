@@ -178,20 +178,17 @@ inline bool ProjectVolumeKernel(const glm::dmat4& eyeToClip, const glm::dvec2& v
  * with the projector onto the smaller eigenvalue's direction, (c - l1 I) / (l2 - l1), as the
  * GLSL does.
  */
-template <typename Matrix>
-inline Matrix FilteredCovariance(const Matrix& c, typename Matrix::value_type variance,
-  bool bandLimit)
+inline glm::dmat2 FilteredCovariance(const glm::dmat2& c, double variance, bool bandLimit)
 {
-  using T = typename Matrix::value_type;
-  const Matrix identity(T(1));
+  const glm::dmat2 identity(1.0);
   if (!bandLimit)
   {
     return c + variance * identity;
   }
-  const T mean = T(0.5) * (c[0][0] + c[1][1]);
-  const T half = T(0.5) * (c[0][0] - c[1][1]);
-  const T radius = std::sqrt(half * half + c[0][1] * c[0][1]);
-  const T l1 = mean + radius, l2 = mean - radius;
+  const double mean = 0.5 * (c[0][0] + c[1][1]);
+  const double half = 0.5 * (c[0][0] - c[1][1]);
+  const double radius = std::sqrt(half * half + c[0][1] * c[0][1]);
+  const double l1 = mean + radius, l2 = mean - radius;
   if (!(l2 < variance))
   {
     return c;

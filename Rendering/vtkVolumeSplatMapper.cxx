@@ -82,6 +82,24 @@ std::vector<vtkIdType> ZCurveOrder(vtkPointSet* input)
   std::transform(codes.begin(), codes.end(), order.begin(), [](const auto& c) { return c.second; });
   return order;
 }
+
+// The splat::FootprintFilter the rasterizer draws with for the mapper's `filter`: AUTOMATIC is
+// the dilation for captures and the band limit for density kernels; captures take the band
+// limit as the low-pass (see SetFootprintFilter).
+int RasterizerFilter(int filter, bool capture)
+{
+  if (filter == vtkVolumeSplatMapper::AUTOMATIC_FILTER)
+  {
+    filter = capture ? vtkVolumeSplatMapper::DILATION_FILTER
+                     : vtkVolumeSplatMapper::BAND_LIMIT_FILTER;
+  }
+  if (filter != vtkVolumeSplatMapper::BAND_LIMIT_FILTER)
+  {
+    return filter;
+  }
+  return static_cast<int>(
+    capture ? splat::FootprintFilter::LowPass : splat::FootprintFilter::BandLimit);
+}
 }
 
 // The kernels of the current input, rebuilt only when it, the mapper or the volume property
@@ -1074,13 +1092,7 @@ void vtkVolumeSplatMapper::Render(vtkRenderer* ren, vtkVolume* volume)
   this->LastOrderingMode = this->OrderingMode != AUTOMATIC ? this->OrderingMode
                                                            : (capture ? DEPTH_SORTED : BLENDED);
   this->Rasterizer->SetOrderingMode(this->LastOrderingMode);
-  const int filter = this->FootprintFilter != AUTOMATIC_FILTER
-    ? this->FootprintFilter
-    : (capture ? DILATION_FILTER : LOW_PASS_FILTER);
-  this->Rasterizer->SetFootprintFilter(filter != BAND_LIMIT_FILTER
-      ? filter
-      : static_cast<int>(capture ? splat::FootprintFilter::LowPass
-                                 : splat::FootprintFilter::BandLimit));
+  this->Rasterizer->SetFootprintFilter(RasterizerFilter(this->FootprintFilter, capture));
 
   int width, height, originX, originY;
   ren->GetTiledSizeAndOrigin(&width, &height, &originX, &originY);

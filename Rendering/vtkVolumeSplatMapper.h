@@ -6,7 +6,8 @@
  * vtkVolumeSplatMapper is a volume mapper, drawn by a vtkVolume with a vtkVolumeProperty. Every
  * kernel is a 3D Gaussian; through the local affine approximation of the perspective projection
  * its integral along each view ray is a 2D Gaussian footprint, band-limited by the screen
- * low-pass filter (Zwicker et al., EWA Volume Splatting; SplatVolumeKernel.h). Footprints are
+ * low-pass filter (Zwicker et al., EWA Volume Splatting; SplatVolumeKernel.h), by default as a
+ * floor of its spread rather than added to it (SetFootprintFilter). Footprints are
  * composited front to back with emission and absorption, in the visibility order of three lists
  * sorted along the X, Y and Z axes (Hofsetz and Max, see vtkVolumeSplatRasterizer and
  * SetOrderingMode). Kernels with a peak opacity (3D Gaussian Splatting captures) are drawn by
@@ -176,7 +177,7 @@ public:
     LOW_PASS_FILTER = 0,    ///< EWA's unit screen low-pass (1 px^2), convolved
     DILATION_FILTER = 1,    ///< the 0.3 px^2 dilation captures are trained with
     ANTIALIASED_FILTER = 2, ///< the dilation, peak opacities compensated (Mip-Splatting)
-    AUTOMATIC_FILTER = 3,   ///< DILATION for captures, LOW_PASS for density kernels (default)
+    AUTOMATIC_FILTER = 3,   ///< DILATION for captures, BAND_LIMIT for density kernels (default)
     BAND_LIMIT_FILTER = 4   ///< the low-pass's 1 px^2 as a floor of each footprint's spread
   };
 
@@ -192,15 +193,16 @@ public:
    * BAND_LIMIT_FILTER, the low-pass's 1 px^2 as a floor of the footprint's variance along every
    * direction rather than added to it (Botsch et al. 2005's approximation of EWA;
    * splat::FilteredCovariance), for density kernels (captures take it as LOW_PASS); or
-   * AUTOMATIC_FILTER (default): DILATION for captures, LOW_PASS for density kernels, whose
+   * AUTOMATIC_FILTER (default): DILATION for captures, BAND_LIMIT for density kernels, whose
    * footprints keep their integral under any filter. Both LOW_PASS and BAND_LIMIT band-limit
    * footprints smaller than a pixel alike, but the sum also widens magnified voxels by a pixel,
    * a blur the ray-marched reference has not. In the report (`splat_report --scenes
    * mri,vdb,gaussians`, 256x256, CPU) BAND_LIMIT takes the MRI head from 40.1 to 49.6 dB
    * (55.1 dB without the sheets) and the OpenVDB cloud from 51.9 to 55.6 dB (59.8), against
-   * 54.6 -> 53.9 dB for the random Gaussians. It is not the default yet: image data's sheets
-   * merged by pairs then differ from the exact path by more than TestVolumeSplatSheets allows
-   * (the shaded MRI: RMSE 0.0023 against 0.0015 under LOW_PASS).
+   * 54.6 -> 53.9 dB for the random Gaussians, at the same frame time. Image data's sheets merged
+   * by pairs lose more of the band-limited image's voxel-to-voxel detail than of the low-passed
+   * one's (TestVolumeSplatSheets, the shaded MRI against the exact path: RMSE 0.0023 against
+   * 0.0015), still far nearer the reference than the low-pass is.
    */
   void SetFootprintFilter(int filter);
   vtkGetMacro(FootprintFilter, int);
