@@ -255,9 +255,12 @@ public:
   {
     if (this->End - this->Begin < n)
     {
-      if (this->Buffer.size() < std::max(n, BlockSize))
+      // A block, or what is left of a smaller file: a vector's resize zeroes all it grows by.
+      const std::size_t block = static_cast<std::size_t>(
+        std::min<vtkTypeInt64>(BlockSize, std::max<vtkTypeInt64>(this->Remaining(), 0)));
+      if (this->Buffer.size() < std::max(n, block))
       {
-        this->Buffer.resize(std::max(n, BlockSize));
+        this->Buffer.resize(std::max(n, block));
       }
       std::memmove(this->Buffer.data(), this->Buffer.data() + this->Begin, this->End - this->Begin);
       this->End -= this->Begin;
