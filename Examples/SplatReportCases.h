@@ -103,7 +103,11 @@ inline std::string DefaultSettingDescription()
   const int layers = mapper->GetNumberOfLayers();
   text << FilterModeName(mapper->GetFilterMode()) << ", cutoff "
        << (mapper->GetCutoff() > 0.0 ? Fixed(mapper->GetCutoff(), 1) : "automatic (0.5, 1 or 2)") << ", "
-       << layers << (layers == 1 ? " layer" : " layers") << ", edge AA "
+       << "magnified low-pass "
+       << (mapper->GetMagnifiedLowPassVariance() > 0.0
+              ? Fixed(mapper->GetMagnifiedLowPassVariance(), 2)
+              : "automatic (1/12 or 1)")
+       << ", " << layers << (layers == 1 ? " layer" : " layers") << ", edge AA "
        << (mapper->GetEdgeAntialiasing() ? "on" : "off") << ", minified variance "
        << mapper->GetMinifiedVariance() << ", level of detail "
        << (mapper->GetLevelOfDetail() ? "on" : "off") << " (CPU)";
@@ -128,6 +132,8 @@ inline std::vector<SplatSetting> SplatSettings()
     { "cutoff", "cutoff=1 (paper)", [](vtkSurfaceSplatMapper* m) { m->SetCutoffToPaper(); } },
     { "cutoff", "cutoff=2", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(2.0); } },
     { "cutoff", "cutoff=4", [](vtkSurfaceSplatMapper* m) { m->SetCutoff(4.0); } },
+    { "low-pass", "low-pass=1 (paper)",
+      [](vtkSurfaceSplatMapper* m) { m->SetMagnifiedLowPassVarianceToPaper(); } },
     { "filter mode", "filter=circular",
       [](vtkSurfaceSplatMapper* m) { m->SetFilterMode(vtkSurfaceSplatMapper::CIRCULAR); } },
     { "filter mode", "filter=unfiltered",

@@ -18,9 +18,11 @@
  *   sum to 1 within 1e-4 (the partition of unity of paper 000, section 7).
  * - Screen coordinates are pixels of the viewport, origin at its lower-left corner; pixel (i, j)
  *   has its center at (i + 0.5, j + 0.5).
- * - The resampling kernel is rho(x) = |J| G_M(x - m), M = J Vr J^T + I (eq. 6), where J is the
+ * - The resampling kernel is rho(x) = |J| G_M(x - m), M = J Vr J^T + v I (eq. 6), where J is the
  *   Jacobian of the projective map from axis units to pixels at u = 0 and m the projected center.
  *   It is evaluated while the exponent beta(x) = 1/2 (x - m)^T M^-1 (x - m) is below the cutoff c.
+ *   v is the variance of the screen low-pass filter: the paper's 1 for splats below a pixel, and
+ *   for magnified ones a smaller variance where their colors allow (LowPassVariance).
  */
 #ifndef SplatSurfelKernel_h
 #define SplatSurfelKernel_h
@@ -130,7 +132,7 @@ inline bool ProjectSurfel(const glm::dmat4& modelToClip, const glm::dvec2& viewp
 struct ResamplingKernel
 {
   glm::dvec2 Center{ 0.0 };
-  glm::dmat2 Covariance{ 1.0 }; ///< M = J Vr J^T + I
+  glm::dmat2 Covariance{ 1.0 }; ///< M = J Vr J^T + v I
   glm::dmat2 Conic{ 1.0 };      ///< M^-1
   double Amplitude = 0.0;       ///< |J| / (2 pi sqrt|M|)
   double Cutoff = 1.0;
@@ -166,7 +168,7 @@ inline double FullCoverageWeight(double tau, double cutoff)
  */
 enum class KernelFilter
 {
-  EWA,       ///< M = J Vr J^T + I: the warped basis function band-limited by the screen low-pass
+  EWA,       ///< M = J Vr J^T + v I: the warped basis function band-limited by the screen low-pass
   Circular,  ///< a circle whose radius is the major axis of the EWA ellipse (Levoy, Shade)
   Unfiltered ///< M = J Vr J^T: elliptical splats without band-limiting; aliases when minified
 };
@@ -206,14 +208,41 @@ inline glm::dmat2 WarpedBasisVariance(const SurfelProjection& projection)
   return SurfelBasisVariance * (J * glm::transpose(J));
 }
 
+/// A pixel's box filter's variance, 1/12 pixels^2: the least screen low-pass a splat gets.
+constexpr double BoxFilterVariance = 1.0 / 12.0;
+
+/// Largest warped variance (pixels^2) up to which a splat gets the unit low-pass, and from which
+/// on the magnified one (LowPassVariance).
+constexpr double LowPassFadeStart = 0.75;
+constexpr double LowPassFadeEnd = 1.5;
+
 /**
- * Builds the kernel of eq. (6) from a projection. With the EWA filter the low-pass term +I keeps
- * M invertible (|M| >= 1) even for an edge-on surfel whose J is singular; its amplitude |J| then
- * goes to zero. The bounding box of the ellipse 1/2 x^T M^-1 x = c has half sizes
- * sqrt(2 c M_xx), sqrt(2 c M_yy), with no eigen-decomposition.
+ * The variance of the screen low-pass filter for a splat whose warped basis function is
+ * `warped`: the paper's 1 while its largest variance is at most LowPassFadeStart (a splat below
+ * a pixel, which would alias without it; the CPU rasterizer sums these per pixel with the unit
+ * filter), `magnified` once it reaches LowPassFadeEnd, linear between. A magnified splat's own
+ * reconstruction is wider than the pixel and band-limits it already; the unit low-pass then
+ * only blurs what it draws.
+ * Its colors still need the paper's filter where they vary from splat to splat (a texture), so
+ * `magnified` is 1 there and BoxFilterVariance, a pixel's own footprint, for one color.
  */
-inline ResamplingKernel MakeResamplingKernel(
-  const SurfelProjection& projection, double cutoff, KernelFilter filter = KernelFilter::EWA)
+inline double LowPassVariance(const glm::dmat2& warped, double magnified)
+{
+  const double t = std::clamp(
+    (LargestEigenvalue(warped) - LowPassFadeStart) / (LowPassFadeEnd - LowPassFadeStart), 0.0,
+    1.0);
+  return 1.0 + (magnified - 1.0) * t;
+}
+
+/**
+ * Builds the kernel of eq. (6) from a projection. With the EWA filter the low-pass term
+ * (LowPassVariance, `magnifiedLowPass` at least BoxFilterVariance) keeps M invertible even for
+ * an edge-on surfel whose J is singular; its amplitude |J| then goes to zero. The bounding box of
+ * the ellipse 1/2 x^T M^-1 x = c has half sizes sqrt(2 c M_xx), sqrt(2 c M_yy), with no
+ * eigen-decomposition.
+ */
+inline ResamplingKernel MakeResamplingKernel(const SurfelProjection& projection, double cutoff,
+  KernelFilter filter = KernelFilter::EWA, double magnifiedLowPass = 1.0)
 {
   ResamplingKernel k;
   const glm::dmat2& J = projection.Jacobian;
@@ -223,7 +252,8 @@ inline ResamplingKernel MakeResamplingKernel(
   switch (filter)
   {
     case KernelFilter::EWA:
-      k.Covariance = warped + glm::dmat2(1.0);
+      k.Covariance = warped +
+        glm::dmat2(LowPassVariance(warped, std::max(magnifiedLowPass, BoxFilterVariance)));
       break;
     case KernelFilter::Circular:
     {

@@ -208,6 +208,22 @@ void vtkSurfaceSplatMapper::SetCutoff(double cutoff)
 }
 
 //------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::SetMagnifiedLowPassVariance(double variance)
+{
+  if (!(variance == 0.0 || (variance >= splat::BoxFilterVariance && variance <= 1.0)))
+  {
+    vtkErrorMacro("MagnifiedLowPassVariance must be 0 (automatic) or between 1/12 and 1, not "
+      << variance << ".");
+    return;
+  }
+  if (variance != this->MagnifiedLowPassVariance)
+  {
+    this->MagnifiedLowPassVariance = variance;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 double vtkSurfaceSplatMapper::ChooseCutoff()
 {
   constexpr double Paper = 1.0;
@@ -599,6 +615,10 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
 
   this->LastCutoff = this->ChooseCutoff();
   this->Rasterizer->SetCutoff(this->LastCutoff);
+  this->LastMagnifiedLowPassVariance = this->MagnifiedLowPassVariance > 0.0
+    ? this->MagnifiedLowPassVariance
+    : this->Surfels->ColorsFromScalars ? 1.0 : splat::BoxFilterVariance;
+  this->Rasterizer->SetMagnifiedLowPassVariance(this->LastMagnifiedLowPassVariance);
 
   this->Compositor->MoveGraphicsResources(ren, this);
   // Picking draws with OpenGL whatever the backend: the selector reads the framebuffer.
@@ -791,6 +811,9 @@ void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "Cutoff: " << this->Cutoff << (this->Cutoff > 0.0 ? "\n" : " (automatic)\n");
   os << indent << "LastCutoff: " << this->LastCutoff << "\n";
+  os << indent << "MagnifiedLowPassVariance: " << this->MagnifiedLowPassVariance
+     << (this->MagnifiedLowPassVariance > 0.0 ? "\n" : " (automatic)\n");
+  os << indent << "LastMagnifiedLowPassVariance: " << this->LastMagnifiedLowPassVariance << "\n";
   os << indent << "MinifiedVariance: " << this->Rasterizer->GetMinifiedVariance() << "\n";
   os << indent << "LevelOfDetail: " << this->LevelOfDetail << "\n";
   os << indent << "DepthThreshold: " << this->Rasterizer->GetDepthThreshold() << "\n";

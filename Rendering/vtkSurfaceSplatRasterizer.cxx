@@ -378,6 +378,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const double cutoff = this->Cutoff;
   const double depthThreshold = this->DepthThreshold;
   const splat::KernelFilter filter = this->Filter;
+  const double magnifiedLowPass = this->MagnifiedLowPassVariance;
   // Hidden back faces may only be left out of an opaque surface.
   const bool cullBackFaces = this->BackfaceCulling && !translucent;
   const bool differential = surfels.Curvatures != nullptr;
@@ -580,7 +581,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
               continue;
             }
             const splat::ResamplingKernel kernel =
-              splat::MakeResamplingKernel(projection, cutoff, filter);
+              splat::MakeResamplingKernel(projection, cutoff, filter, magnifiedLowPass);
             glm::ivec4 box;
             if (rectangles
                 ? !RectanglePixels(eyeToClip, viewport, p, a0, a1, box)
@@ -1050,6 +1051,7 @@ void vtkSurfaceSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CoverageThreshold: " << this->CoverageThreshold << "\n";
   os << indent << "Filter: " << static_cast<int>(this->Filter) << "\n";
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
+  os << indent << "MagnifiedLowPassVariance: " << this->MagnifiedLowPassVariance << "\n";
   os << indent << "MinifiedVariance: " << this->MinifiedVariance << "\n";
   os << indent << "SplattedCount: " << this->SplattedCount << "\n";
   os << indent << "MinifiedCount: " << this->MinifiedCount << "\n";

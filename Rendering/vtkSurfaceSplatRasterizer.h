@@ -124,6 +124,14 @@ public:
   splat::KernelFilter GetFilter() const { return this->Filter; }
 
   /**
+   * Variance of the EWA filter's screen low-pass for magnified splats, in pixels^2
+   * (splat::LowPassVariance): 1, the default, is the paper's filter for every splat; down to
+   * splat::BoxFilterVariance for splats of one color.
+   */
+  vtkSetClampMacro(MagnifiedLowPassVariance, double, splat::BoxFilterVariance, 1.0);
+  vtkGetMacro(MagnifiedLowPassVariance, double);
+
+  /**
    * Minified splats, accumulated per pixel: an opaque EWA splat whose warped basis function
    * (J Vr J^T of eq. 6) has no variance above this many pixels^2 is about as small as the screen
    * low-pass filter or smaller, so its resampling kernel is nearly a Gaussian of variance
@@ -280,6 +288,7 @@ protected:
   splat::KernelFilter Filter = splat::KernelFilter::EWA;
   bool BackfaceCulling = false;
 
+  double MagnifiedLowPassVariance = 1.0;
   double MinifiedVariance = 0.75;
 
   vtkIdType SplattedCount = 0;

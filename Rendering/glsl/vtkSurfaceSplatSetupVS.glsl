@@ -20,6 +20,7 @@ uniform vec2 viewportSize;
 uniform float nearDepth;
 uniform float farDepth;
 uniform float cutoff;
+uniform float magnifiedLowPass; // LowPassVariance's variance for magnified splats
 uniform int filterMode; // 0 EWA, 1 circular, 2 unfiltered, 3 approximate
 uniform int differential; // axes are the rectangles' half-widths along the principal directions
 uniform int perspective;
@@ -41,6 +42,8 @@ out vec4 recordColor;
 const float InverseTwoPi = 0.15915494309189533577;
 const float EdgeOnForeshortening = 1e-3;
 const float UnfilteredMinimumVariance = 1e-6;
+const float LowPassFadeStart = 0.75;
+const float LowPassFadeEnd = 1.5;
 
 void cull()
 {
@@ -97,20 +100,25 @@ void main()
     return;
   }
 
-  // MakeResamplingKernel: M = J Vr J^T (+ I), Vr = 1/2 I.
+  // MakeResamplingKernel: M = J Vr J^T (+ v I), Vr = 1/2 I.
   float mxx = 0.5 * (j0.x * j0.x + j1.x * j1.x);
   float mxy = 0.5 * (j0.x * j0.y + j1.x * j1.y);
   float myy = 0.5 * (j0.y * j0.y + j1.y * j1.y);
-  if (filterMode == 2)
+  float lowPass = 1.0;
+  if (filterMode == 0)
   {
-    mxx += UnfilteredMinimumVariance;
-    myy += UnfilteredMinimumVariance;
+    // LowPassVariance: fades to the magnified variance as the largest warped variance grows.
+    float largest =
+      0.5 * (mxx + myy) + sqrt(0.25 * (mxx - myy) * (mxx - myy) + mxy * mxy);
+    lowPass = mix(1.0, magnifiedLowPass,
+      clamp((largest - LowPassFadeStart) / (LowPassFadeEnd - LowPassFadeStart), 0.0, 1.0));
   }
-  else
+  else if (filterMode == 2)
   {
-    mxx += 1.0;
-    myy += 1.0;
+    lowPass = UnfilteredMinimumVariance;
   }
+  mxx += lowPass;
+  myy += lowPass;
   if (filterMode == 1)
   {
     float mean = 0.5 * (mxx + myy);

@@ -177,6 +177,38 @@ TEST(SurfelKernel, CircularAndUnfilteredFilters)
   }
 }
 
+// The EWA low-pass: the paper's unit variance for splats below a pixel, the magnified variance
+// once the splat is wider than LowPassFadeEnd, linear between; an edge-on splat's M stays
+// invertible at the smallest low-pass.
+TEST(SurfelKernel, LowPassFadesForMagnifiedSplats)
+{
+  const double small = splat::BoxFilterVariance;
+  splat::SurfelProjection projection;
+  // Warped variances 1/2 J J^T: 0.5 (below the fade), 8 (magnified), and 1.125 (halfway).
+  for (const auto& [scale, lowPass] : { std::pair<double, double>{ 1.0, 1.0 },
+         { 4.0, small }, { 1.5, 0.5 * (1.0 + small) } })
+  {
+    projection.Jacobian = glm::dmat2(scale, 0.0, 0.0, scale);
+    const splat::ResamplingKernel k =
+      splat::MakeResamplingKernel(projection, 1.0, splat::KernelFilter::EWA, small);
+    EXPECT_NEAR(k.Covariance[0][0], 0.5 * scale * scale + lowPass, 1e-12) << scale;
+    EXPECT_EQ(k.Covariance[0][1], 0.0);
+    // The paper's filter whatever the size at magnified variance 1.
+    EXPECT_NEAR(splat::MakeResamplingKernel(projection, 1.0).Covariance[1][1],
+      0.5 * scale * scale + 1.0, 1e-12);
+  }
+  // Anisotropic: the largest warped variance decides (magnified along one axis only).
+  projection.Jacobian = glm::dmat2(4.0, 0.0, 0.0, 0.1);
+  const splat::ResamplingKernel grazing =
+    splat::MakeResamplingKernel(projection, 1.0, splat::KernelFilter::EWA, small);
+  EXPECT_NEAR(grazing.Covariance[1][1], 0.005 + small, 1e-12);
+  projection.Jacobian = glm::dmat2(3.0, 0.0, 6.0, 0.0); // edge-on
+  const splat::ResamplingKernel edgeOn =
+    splat::MakeResamplingKernel(projection, 1.0, splat::KernelFilter::EWA, small);
+  EXPECT_GT(glm::determinant(edgeOn.Covariance), 0.0);
+  EXPECT_TRUE(std::isfinite(edgeOn.Conic[0][0]) && std::isfinite(edgeOn.HalfExtent.y));
+}
+
 // Foreshortening depends on the angle of view only: 1 face-on, cos(angle) for a tilted circle,
 // whatever the distance (the minified far splats of a plane are not edge-on).
 TEST(SurfelKernel, ForeshorteningIgnoresDistance)

@@ -72,5 +72,12 @@ int main(int argc, char* argv[])
               << mapper->GetNumberOfSkippedPoints() << " skipped.\n";
     return EXIT_FAILURE;
   }
+  // One color: magnified splats get a pixel's box low-pass, not the paper's unit one.
+  if (mapper->GetLastMagnifiedLowPassVariance() != 1.0 / 12.0)
+  {
+    std::cerr << "Expected the box low-pass for surfels of one color, got "
+              << mapper->GetLastMagnifiedLowPassVariance() << ".\n";
+    return EXIT_FAILURE;
+  }
   return vtkRegressionTestImage(window) == vtkTesting::FAILED ? EXIT_FAILURE : EXIT_SUCCESS;
 }
