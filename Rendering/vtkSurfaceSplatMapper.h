@@ -165,8 +165,10 @@ public:
    * whole) are summed into the pixel holding their center and spread by the low-pass filter
    * once per pixel, instead of each drawing its own kernel over several pixels: several times
    * faster on dense data, within a small error of the exact kernels (see
-   * vtkSurfaceSplatRasterizer::SetMinifiedVariance). Default 0.75; 0 draws every splat with its
-   * exact kernel.
+   * vtkSurfaceSplatRasterizer::SetMinifiedVariance). A frame takes this path only where a
+   * sample of the surfels in view finds at least a quarter of them minified: on a magnified
+   * scan it only costs (the bunny seen whole drew 25 % slower with it, one splat in 34620
+   * minified). Default 0.75; 0 draws every splat with its exact kernel.
    */
   void SetMinifiedVariance(double variance);
   double GetMinifiedVariance();
@@ -177,8 +179,9 @@ public:
    * hierarchy of merged surfels (vtkSurfelHierarchy) is built once per input, on the first
    * frame that needs it, and each frame draws, region by region, its coarsest level whose
    * splats are still minified (see SetMinifiedVariance): far fewer splats for the same image
-   * where many surfels fall in each pixel. Default on; it needs MinifiedVariance above 0 and
-   * the EWA filter, and does nothing for translucent surfels or differential points.
+   * where many surfels fall in each pixel. Default on; it needs MinifiedVariance above 0, the
+   * EWA filter and a frame that takes the minified path, and does nothing for translucent
+   * surfels or differential points.
    */
   vtkSetMacro(LevelOfDetail, bool);
   vtkGetMacro(LevelOfDetail, bool);

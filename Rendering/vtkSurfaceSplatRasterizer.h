@@ -141,7 +141,9 @@ public:
    * gathers its neighbors' sums through that Gaussian at their mean centers: one write per
    * splat instead of a kernel over several pixels. Default 0.75 (splats up to about 1.2 pixels
    * apart); 0 draws every splat with its exact kernel. Translucent scenes, differential points
-   * and the other filters always take the exact kernel.
+   * and the other filters always take the exact kernel, and so does a frame where fewer than a
+   * quarter of a sample of the surfels in view are minified (the path's single-precision setup
+   * of every splat would cost more than it saves).
    */
   vtkSetClampMacro(MinifiedVariance, double, 0.0, 1.0);
   vtkGetMacro(MinifiedVariance, double);
