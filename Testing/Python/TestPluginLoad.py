@@ -75,7 +75,8 @@ def test_mapper(servermanager):
 
     # Every setting has its property and its information (read-back) property; every statistic
     # its information-only property. A missing one fails here, before the round trips.
-    settings = ["Radius", "RadiusArrayName", "Cutoff", "MinifiedVariance", "LevelOfDetail",
+    settings = ["Radius", "RadiusArrayName", "Cutoff", "MagnifiedLowPassVariance",
+                "MinifiedVariance", "LevelOfDetail",
                 "DepthThreshold",
                 "FilterMode", "Backend", "NumberOfLayers", "EdgeAntialiasing", "CoverageThreshold", "OpacityArrayName",
                 "TangentAxis0ArrayName", "TangentAxis1ArrayName", "Primitive",
@@ -108,7 +109,8 @@ def test_mapper(servermanager):
     smproxy.UpdateVTKObjects()
     check_defaults_and_enumerations(
         smproxy, mapper, "",
-        {"Cutoff": 0.0, "MinifiedVariance": 0.75, "LevelOfDetail": 1, "Radius": 1.0,
+        {"Cutoff": 0.0, "MagnifiedLowPassVariance": 0.0, "MinifiedVariance": 0.75,
+         "LevelOfDetail": 1, "Radius": 1.0,
          "DepthThreshold": 1.0,
          "FilterMode": 0,
          "Backend": 0, "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.4,
@@ -134,7 +136,8 @@ def test_mapper(servermanager):
           "EdgeAntialiasing is a boolean")
 
     # Round trips: proxy property -> VTK object -> information property.
-    values = {"Cutoff": 2.5, "MinifiedVariance": 0.0, "LevelOfDetail": 0, "Radius": 0.125,
+    values = {"Cutoff": 2.5, "MagnifiedLowPassVariance": 0.5, "MinifiedVariance": 0.0,
+              "LevelOfDetail": 0, "Radius": 0.125,
               "DepthThreshold": 0.75,
               "NumberOfLayers": 5, "EdgeAntialiasing": 0, "CoverageThreshold": 0.25}
     strings = {"RadiusArrayName": "SplatRadius", "OpacityArrayName": "SplatOpacity",
