@@ -165,7 +165,7 @@ void MinifiedSplatCells::Sum(vtkIdType chunks)
 
 //------------------------------------------------------------------------------
 vtkIdType MinifiedSplatCells::Gather(SurfaceFragment* fragments, std::uint8_t* counts,
-  float cutoff, float fullCoverage, const float* sceneDepths) const
+  float cutoff, float fullCoverage, const float* sceneDepths, float weightScale) const
 {
   // Each pixel gathers its neighbors' cells into its own fragments, one contribution per cell:
   // the low-pass filter widened by the cell's spread, the Gaussian of variance v = 1 + spread,
@@ -212,7 +212,7 @@ vtkIdType MinifiedSplatCells::Gather(SurfaceFragment* fragments, std::uint8_t* c
           {
             return false;
           }
-          w = static_cast<float>(InverseTwoPi) * exponential(beta) * c.InverseVariance;
+          w = weightScale * static_cast<float>(InverseTwoPi) * exponential(beta) * c.InverseVariance;
           return true;
         };
         auto add = [&](const Cell& c, int dx, int dy, float z)

@@ -81,10 +81,12 @@ public:
   /**
    * Gathers the cells into the pixels' fragments (`layers` per pixel, counted by `counts`, as
    * the rasterizer keeps them); pixels whose scene depth (eye depth, or null for none) is
-   * nearer than a contribution do not take it. Returns the contributions written.
+   * nearer than a contribution do not take it. Each contribution's weight is scaled by
+   * `weightScale` (TruncatedMassScale, where `cutoff` is not the one `fullCoverage` is for).
+   * Returns the contributions written.
    */
   vtkIdType Gather(SurfaceFragment* fragments, std::uint8_t* counts, float cutoff,
-    float fullCoverage, const float* sceneDepths) const;
+    float fullCoverage, const float* sceneDepths, float weightScale) const;
 
 private:
   int ViewportWidth = 0;

@@ -234,26 +234,63 @@ inline double LowPassVariance(const glm::dmat2& warped, double magnified)
   return 1.0 + (magnified - 1.0) * t;
 }
 
+/// Largest warped variance (pixels^2) up to which a splat gets at least the antialiasing cutoff
+/// (SplatCutoff), and from which on the frame's cutoff alone.
+constexpr double CutoffFadeStart = 8.0;
+constexpr double CutoffFadeEnd = 32.0;
+
+/**
+ * The cutoff of a splat whose warped basis function has the largest variance `largestWarped`:
+ * the frame's `cutoff`, raised to `antialiasingCutoff` while the screen low-pass is a sizable
+ * part of the kernel (largest warped variance up to CutoffFadeStart, where the unit low-pass
+ * is a ninth of it or more), linear to CutoffFadeEnd. A tight cutoff truncates the low-pass's
+ * tail, which then no longer keeps colors that change from splat to splat from aliasing;
+ * where the splat's own reconstruction dominates, a tight cutoff only sharpens what it
+ * interpolates.
+ */
+inline double SplatCutoff(double largestWarped, double cutoff, double antialiasingCutoff)
+{
+  const double t = std::clamp(
+    (largestWarped - CutoffFadeStart) / (CutoffFadeEnd - CutoffFadeStart), 0.0, 1.0);
+  return cutoff + std::max(antialiasingCutoff - cutoff, 0.0) * (1.0 - t);
+}
+
+/**
+ * The factor that gives a kernel truncated at `splatCutoff` the mass, 1 - e^-c, of one
+ * truncated at the frame's `cutoff`, so that the frame's full-coverage weight
+ * (FullCoverageWeight) holds for both.
+ */
+inline double TruncatedMassScale(double cutoff, double splatCutoff)
+{
+  return (1.0 - std::exp(-cutoff)) / (1.0 - std::exp(-splatCutoff));
+}
+
 /**
  * Builds the kernel of eq. (6) from a projection. With the EWA filter the low-pass term
  * (LowPassVariance, `magnifiedLowPass` at least BoxFilterVariance) keeps M invertible even for
- * an edge-on surfel whose J is singular; its amplitude |J| then goes to zero. The bounding box of
- * the ellipse 1/2 x^T M^-1 x = c has half sizes sqrt(2 c M_xx), sqrt(2 c M_yy), with no
+ * an edge-on surfel whose J is singular; its amplitude |J| then goes to zero. Its cutoff c is
+ * SplatCutoff's (`cutoff` but where `antialiasingCutoff` raises it), its amplitude scaled to
+ * the mass it would keep at `cutoff` (TruncatedMassScale). The bounding box of the ellipse
+ * 1/2 x^T M^-1 x = c has half sizes sqrt(2 c M_xx), sqrt(2 c M_yy), with no
  * eigen-decomposition.
  */
 inline ResamplingKernel MakeResamplingKernel(const SurfelProjection& projection, double cutoff,
-  KernelFilter filter = KernelFilter::EWA, double magnifiedLowPass = 1.0)
+  KernelFilter filter = KernelFilter::EWA, double magnifiedLowPass = 1.0,
+  double antialiasingCutoff = 0.0)
 {
   ResamplingKernel k;
   const glm::dmat2& J = projection.Jacobian;
   k.Center = projection.Center;
   k.Cutoff = cutoff;
+  double massScale = 1.0;
   const glm::dmat2 warped = WarpedBasisVariance(projection);
   switch (filter)
   {
     case KernelFilter::EWA:
       k.Covariance = warped +
         glm::dmat2(LowPassVariance(warped, std::max(magnifiedLowPass, BoxFilterVariance)));
+      k.Cutoff = SplatCutoff(LargestEigenvalue(warped), cutoff, antialiasingCutoff);
+      massScale = TruncatedMassScale(cutoff, k.Cutoff);
       break;
     case KernelFilter::Circular:
     {
@@ -267,9 +304,9 @@ inline ResamplingKernel MakeResamplingKernel(const SurfelProjection& projection,
   }
   const double detM = glm::determinant(k.Covariance);
   k.Conic = glm::inverse(k.Covariance);
-  k.Amplitude = std::abs(glm::determinant(J)) * InverseTwoPi / std::sqrt(detM);
-  k.HalfExtent = glm::dvec2(std::sqrt(2.0 * cutoff * k.Covariance[0][0]),
-    std::sqrt(2.0 * cutoff * k.Covariance[1][1]));
+  k.Amplitude = massScale * std::abs(glm::determinant(J)) * InverseTwoPi / std::sqrt(detM);
+  k.HalfExtent = glm::dvec2(std::sqrt(2.0 * k.Cutoff * k.Covariance[0][0]),
+    std::sqrt(2.0 * k.Cutoff * k.Covariance[1][1]));
   return k;
 }
 

@@ -324,6 +324,8 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::SetSplatUniforms(vtkShaderProgr
   this->SetViewUniforms(program, camera);
   program->SetUniformf("cutoff", static_cast<float>(settings->GetCutoff()));
   program->SetUniformf(
+    "antialiasingCutoff", static_cast<float>(settings->GetAntialiasingCutoff()));
+  program->SetUniformf(
     "magnifiedLowPass", static_cast<float>(settings->GetMagnifiedLowPassVariance()));
   program->SetUniformi("filterMode",
     approximateFilter ? ApproximateFilterMode : static_cast<int>(settings->GetFilter()));

@@ -32,6 +32,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -227,9 +228,11 @@ void vtkSurfaceSplatMapper::SetMagnifiedLowPassVariance(double variance)
 double vtkSurfaceSplatMapper::ChooseCutoff()
 {
   constexpr double Paper = 1.0;
-  // Each tried in turn, the next one up as the reference of what covering is.
-  constexpr double Tight = 0.5;
   constexpr double Wide = 2.0;
+  // Each tried in turn against a wider reference of what covering is; Wide where none covers.
+  // 0.6 is for grids whose radius is their spacing: their disks at 0.5 only touch.
+  constexpr std::array<std::array<double, 2>, 3> Ladder = { { { 0.5, Paper }, { 0.6, Paper },
+    { Paper, Wide } } };
   // The share of the surface a cutoff may leave uncovered: holes in fewer samples are at the
   // surface's boundary or too small to see.
   constexpr double AcceptedHoles = 0.01;
@@ -246,9 +249,15 @@ double vtkSurfaceSplatMapper::ChooseCutoff()
   if (surfels.AutomaticTime < surfels.BuildTime || surfels.AutomaticThreshold != tau)
   {
     const splat::SurfelCoverage coverage(surfels.View());
-    surfels.AutomaticCutoff = coverage.UncoveredShare(Tight, Paper, tau) <= AcceptedHoles
-      ? Tight
-      : coverage.UncoveredShare(Paper, Wide, tau) <= AcceptedHoles ? Paper : Wide;
+    surfels.AutomaticCutoff = Wide;
+    for (const auto& step : Ladder)
+    {
+      if (coverage.UncoveredShare(step[0], step[1], tau) <= AcceptedHoles)
+      {
+        surfels.AutomaticCutoff = step[0];
+        break;
+      }
+    }
     surfels.AutomaticThreshold = tau;
     surfels.AutomaticTime.Modified();
   }
@@ -615,6 +624,11 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
 
   this->LastCutoff = this->ChooseCutoff();
   this->Rasterizer->SetCutoff(this->LastCutoff);
+  // Colors that change from splat to splat keep the paper's cutoff where the low-pass matters.
+  this->Rasterizer->SetAntialiasingCutoff(
+    this->Cutoff == 0.0 && this->Primitive == SURFELS && this->Surfels->ColorsFromScalars
+      ? 1.0
+      : 0.0);
   this->LastMagnifiedLowPassVariance = this->MagnifiedLowPassVariance > 0.0
     ? this->MagnifiedLowPassVariance
     : this->Surfels->ColorsFromScalars ? 1.0 : splat::BoxFilterVariance;

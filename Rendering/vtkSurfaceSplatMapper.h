@@ -114,19 +114,26 @@ public:
    * more and blurs more, but fills wider gaps between scattered points.
    *
    * Default 0, automatic: 0.5 where the surfels still cover their surface at that cutoff,
-   * else the paper's 1 (SetCutoffToPaper) where they cover it at 1, else 2. The test is done
-   * once per input, in object space, on samples of the surfels' disks (SplatSurfelCoverage.h),
-   * each cutoff against the next one up: surfels on a mesh's vertices with the radius of their
-   * longest edge pass at 0.5; a grid whose radius is its spacing does not (its tight disks
-   * only touch, and the pixels between them would be partly transparent) but passes at 1;
-   * scattered points whose radii only reach their nearest neighbors pass at neither. Why: in
-   * `splat_report`'s tables (512x384, CPU), 0.5 is faster and more exact than 1 on every scene
-   * whose surfels cover at 0.5 (RMSE 0.0186 against 0.0237 on the bunny, 0.0339 against
-   * 0.0439 on the armadillo, 30-35 % less time); on points scattered over the armadillo 0.5
-   * leaves holes (0.0466) and 1 speckles of background (0.0276), which 2 closes (0.0239; 4
-   * gives 0.0237 in 20 % more time).
-   * Differential points keep the paper's cutoff. GetLastCutoff() tells what the last render
-   * used.
+   * else 0.6, else the paper's 1 (SetCutoffToPaper) where they cover it at 1, else 2. The test
+   * is done once per input, in object space, on samples of the surfels' disks
+   * (SplatSurfelCoverage.h), each cutoff against a wider one: surfels on a mesh's vertices with
+   * the radius of their longest edge pass at 0.5; a grid whose radius is its spacing passes at
+   * 0.6 (its disks at 0.5 only touch, and the pixels between them would be partly
+   * transparent); scattered points whose radii only reach their nearest neighbors pass at
+   * neither 0.5 nor 1. With colors from scalars, splats small enough for the screen low-pass
+   * to be a sizable part of their kernel (largest warped variance up to 8 pixels^2, fading
+   * out by 32; splat::SplatCutoff) take at least the paper's 1: a tighter cutoff truncates
+   * the low-pass and lets colors that change from splat to splat alias.
+   * Why: in `splat_report`'s tables (512x384, CPU), the tight cutoff draws magnified splats
+   * sharper than 1, faster, and more exactly where the surfels cover at it (RMSE 0.0165
+   * against 0.0205 on the bunny, 0.0322 against 0.0414 on the armadillo); on points scattered
+   * over the armadillo 0.5 leaves holes (0.0615) and 1 speckles of background (0.0321), which
+   * 2 closes (0.0236; 4 gives 0.0222 in 44 % more time). On the checkerboard's colors the
+   * paper's 1 everywhere blurs the magnified checks (0.0834) and 0.6 everywhere aliases the
+   * small splats (0.0764); the automatic cutoff, 0.6 raised to 1 for the small splats, gives
+   * 0.0664.
+   * Differential points keep the paper's cutoff; a cutoff set by hand holds for every splat.
+   * GetLastCutoff() tells what the last render used (for colors, where splats are large).
    */
   void SetCutoff(double cutoff);
   vtkGetMacro(Cutoff, double);
@@ -146,8 +153,8 @@ public:
    * Default 0, automatic: 1/12 for surfels of one color, 1 for colors from scalars, which a
    * smaller low-pass lets alias wherever they change from splat to splat. Why: in `splat_report`'s
    * tables (512x384, CPU) the unit low-pass only blurs a magnified surface's shading and
-   * silhouettes against the supersampled mesh: RMSE 0.0166 against 0.0186 on the bunny seen
-   * whole, 0.0317 against 0.0339 on the armadillo, no slower; on the checkerboard's colors it
+   * silhouettes against the supersampled mesh: RMSE 0.0165 against 0.0184 on the bunny seen
+   * whole, 0.0322 against 0.0340 on the armadillo, no slower; on the checkerboard's colors it
    * would alias (0.1213 against 0.0834 at 1/12). GetLastMagnifiedLowPassVariance() tells what
    * the last render used.
    */

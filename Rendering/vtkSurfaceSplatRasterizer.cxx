@@ -101,6 +101,7 @@ struct vtkSurfaceSplatRasterizer::ScreenSplat
   float CenterX, CenterY;
   float ConicXX, ConicXY, ConicYY; // 1/2 M^-1, so that beta = d^T C d
   float Amplitude;
+  float Cutoff;    // splat::SplatCutoff's
   float Threshold; // eye-space z threshold
   int X0, X1, Y0, Y1; // inclusive pixel bounds
   float DepthNumerator[3];
@@ -412,6 +413,10 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const double cutoff = this->Cutoff;
   const double depthThreshold = this->DepthThreshold;
   const splat::KernelFilter filter = this->Filter;
+  const double antialiasingCutoff =
+    filter == splat::KernelFilter::EWA ? this->AntialiasingCutoff : 0.0;
+  // The widest cutoff any splat gets: that of splats below CutoffFadeStart, minified ones too.
+  const double widestCutoff = splat::SplatCutoff(0.0, cutoff, antialiasingCutoff);
   const double magnifiedLowPass = this->MagnifiedLowPassVariance;
   // Hidden back faces may only be left out of an opaque surface.
   const bool cullBackFaces = this->BackfaceCulling && !translucent;
@@ -425,12 +430,12 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const float amplitudeScale = differential && !rectangles ? 2.0f : 1.0f;
   // How far a splat reaches along an axis, in units of the axis: its cutoff ellipse (beta =
   // |u|^2 < cutoff in axis units) or its rectangle.
-  const double depthReach = footprintScale * std::max(std::sqrt(cutoff), 1.0);
+  const double depthReach = footprintScale * std::max(std::sqrt(widestCutoff), 1.0);
 
   // Minified splats are summed per pixel where the exact kernel is the EWA one of an opaque
   // surfel (SplatMinifiedSplatCells.h), in frames where enough of them are minified to pay.
   splat::MinifiedSplatCells& minifiedCells = this->Internal->MinifiedCells;
-  minifiedCells.SetUp(width, height, this->Layers, cutoff, this->MinifiedVariance);
+  minifiedCells.SetUp(width, height, this->Layers, widestCutoff, this->MinifiedVariance);
   const int reach = minifiedCells.GetReach();
   splat::MinifiedSurfelProjector::Frame minifiedFrame;
   minifiedFrame.ModelToEye = modelToEye;
@@ -471,7 +476,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<DifferentialSplat>& differentials = this->Internal->DifferentialSplats;
   differentials.resize(differential ? count : 0);
 
-  const float cutoffF = static_cast<float>(cutoff);
+  const float widestCutoffF = static_cast<float>(widestCutoff);
   const float nearClip = static_cast<float>(nearDepth);
   const float farClip = static_cast<float>(farDepth);
   // The opaque scene's window depths as linear eye depths, for the per-fragment test.
@@ -480,7 +485,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
     : std::vector<float>();
   const float* sceneDepths = sceneEyeDepths.empty() ? nullptr : sceneEyeDepths.data();
   const int layers = this->Layers;
-  const splat::ExponentialTable exponential(cutoffF);
+  const splat::ExponentialTable exponential(widestCutoffF);
   const float full = frame.FullCoverage;
   const float negligible = splat::NegligibleCoverage * full;
 
@@ -616,7 +621,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
               continue;
             }
             const splat::ResamplingKernel kernel =
-              splat::MakeResamplingKernel(projection, cutoff, filter, magnifiedLowPass);
+              splat::MakeResamplingKernel(projection, cutoff, filter, magnifiedLowPass,
+                antialiasingCutoff);
             glm::ivec4 box;
             if (rectangles
                 ? !RectanglePixels(eyeToClip, viewport, p, a0, a1, box)
@@ -637,6 +643,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
             s.ConicXY = static_cast<float>(kernel.Conic[1][0]);
             s.ConicYY = static_cast<float>(0.5 * kernel.Conic[1][1]);
             s.Amplitude = amplitudeScale * static_cast<float>(massScale * kernel.Amplitude);
+            s.Cutoff = static_cast<float>(kernel.Cutoff);
 
             splat::PlaneDepth depth;
             if (!splat::MakePlaneDepth(rays, p, normal, depth))
@@ -733,7 +740,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
               // a rectangle's pixels are tested one by one.
               const float bq = s.ConicXY * dy;
               const float discriminant =
-                bq * bq - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - cutoffF);
+                bq * bq - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - s.Cutoff);
               if (!(discriminant > 0.0f) && !rectangles)
               {
                 continue;
@@ -764,7 +771,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                        betaStep += betaStep2, numerator += s.DepthNumerator[0],
                        denominator += s.DepthDenominator[0])
               {
-                if (!rectangles && (!(beta < cutoffF) || beta < 0.0f))
+                if (!rectangles && (!(beta < s.Cutoff) || beta < 0.0f))
                 {
                   continue; // rounding at the span's ends
                 }
@@ -817,7 +824,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
     {
       minifiedCells.Sum(chunks);
       this->FragmentCount += minifiedCells.Gather(this->Fragments.data(),
-        this->FragmentCounts.data(), cutoffF, frame.FullCoverage, sceneDepths);
+        this->FragmentCounts.data(), widestCutoffF, frame.FullCoverage, sceneDepths,
+        static_cast<float>(splat::TruncatedMassScale(cutoff, widestCutoff)));
     }
   };
 
@@ -874,7 +882,8 @@ bool vtkSurfaceSplatRasterizer::RegionHidden(
   const glm::dmat4& modelToEye = view.ModelToEye;
   const double scale = std::max({ glm::length(glm::dvec3(modelToEye[0])),
     glm::length(glm::dvec3(modelToEye[1])), glm::length(glm::dvec3(modelToEye[2])) });
-  const glm::dvec3 widening(std::max(std::sqrt(this->Cutoff), 1.0) * reach);
+  const double cutoff = splat::SplatCutoff(0.0, this->Cutoff, this->AntialiasingCutoff);
+  const glm::dvec3 widening(std::max(std::sqrt(cutoff), 1.0) * reach);
   const glm::dvec3 corners[2] = { low - widening, high + widening };
   double nearest = std::numeric_limits<double>::infinity();
   glm::dvec2 lo(std::numeric_limits<double>::infinity());
@@ -1086,6 +1095,7 @@ void vtkSurfaceSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CoverageThreshold: " << this->CoverageThreshold << "\n";
   os << indent << "Filter: " << static_cast<int>(this->Filter) << "\n";
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
+  os << indent << "AntialiasingCutoff: " << this->AntialiasingCutoff << "\n";
   os << indent << "MagnifiedLowPassVariance: " << this->MagnifiedLowPassVariance << "\n";
   os << indent << "MinifiedVariance: " << this->MinifiedVariance << "\n";
   os << indent << "SplattedCount: " << this->SplattedCount << "\n";

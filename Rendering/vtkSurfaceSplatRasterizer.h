@@ -72,6 +72,17 @@ public:
   vtkGetMacro(Cutoff, double);
 
   /**
+   * EWA filter: the least cutoff of splats whose screen low-pass is a sizable part of their
+   * kernel (largest warped variance up to splat::CutoffFadeStart pixels^2, fading to Cutoff by
+   * splat::CutoffFadeEnd; see splat::SplatCutoff), for colors that change from splat to splat,
+   * which a low-pass cut short lets alias. Each such splat's weight is scaled to the mass it
+   * would keep at Cutoff, so the coverage threshold holds for all. Default 0: Cutoff for every
+   * splat.
+   */
+  vtkSetClampMacro(AntialiasingCutoff, double, 0.0, 50.0);
+  vtkGetMacro(AntialiasingCutoff, double);
+
+  /**
    * Z threshold of the accumulate-or-replace decision, in units of each surfel's eye-space
    * radius: contributions whose depths differ by less are the same surface. Default 1.
    */
@@ -290,6 +301,7 @@ protected:
   splat::KernelFilter Filter = splat::KernelFilter::EWA;
   bool BackfaceCulling = false;
 
+  double AntialiasingCutoff = 0.0;
   double MagnifiedLowPassVariance = 1.0;
   double MinifiedVariance = 0.75;
 

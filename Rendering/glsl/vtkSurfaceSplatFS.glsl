@@ -26,13 +26,13 @@ flat in vec3 splatAxis1;
 flat in vec2 splatExtent;
 flat in vec2 splatCurvature;
 flat in float splatThreshold;
+flat in float splatCutoff;
 flat in vec4 splatColor;
 flat in vec2 splatPointId;
 
 uniform int splatPass;
 uniform int filterMode;
 uniform int differential;
-uniform float cutoff;
 uniform int perspective;
 // The view rays: pixel (x, y) sees rayOrigin (x, y, 1) + t rayDirection (x, y, 1) at eye depth t.
 uniform mat3 rayOrigin;
@@ -130,11 +130,11 @@ void main()
   }
   if (rectangle)
   {
-    beta = max(abs(u.x), abs(u.y)) <= 1.0 ? 0.0 : cutoff;
+    beta = max(abs(u.x), abs(u.y)) <= 1.0 ? 0.0 : splatCutoff;
   }
   // A ray that meets the plane behind the eye does not see the splat; the near and far planes
   // clip it.
-  if (!(beta < cutoff) || (perspective != 0 && !(t > 0.0)) ||
+  if (!(beta < splatCutoff) || (perspective != 0 && !(t > 0.0)) ||
     !(t >= nearDepth && t <= farDepth))
   {
     discard;
@@ -145,7 +145,7 @@ void main()
     // center: within a surface, the splat whose kernel weighs most at the pixel wins; the
     // surface passes the depth the render before the selection left (the selector preserves
     // it), which lies within the threshold behind its front; a surface in front wins.
-    gl_FragDepth = windowDepth(t - splatThreshold * (1.0 - beta / cutoff));
+    gl_FragDepth = windowDepth(t - splatThreshold * (1.0 - beta / splatCutoff));
     gl_FragData[0] = vec4(selectionIdPass == 0 ? selectionColor
         : idColor(selectionIdPass == 1 ? splatPointId.x : splatPointId.y), 1.0);
     return;

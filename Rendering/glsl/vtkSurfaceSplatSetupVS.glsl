@@ -20,6 +20,7 @@ uniform vec2 viewportSize;
 uniform float nearDepth;
 uniform float farDepth;
 uniform float cutoff;
+uniform float antialiasingCutoff; // SplatCutoff's least cutoff where the low-pass matters
 uniform float magnifiedLowPass; // LowPassVariance's variance for magnified splats
 uniform int filterMode; // 0 EWA, 1 circular, 2 unfiltered, 3 approximate
 uniform int differential; // axes are the rectangles' half-widths along the principal directions
@@ -34,7 +35,7 @@ out vec4 recordCenter; // the kernel's center in pixels, and the curvatures (neg
 out vec4 recordConic;  // 1/2 M^-1 as (xx, 2 xy, yy): beta = dx^2 xx + dx dy xy + dy^2 yy, and
                        // the kernel's amplitude
 out vec4 recordPoint;  // eye space, and the depth threshold
-out vec4 recordNormal; // eye space, facing the viewer (w unused)
+out vec4 recordNormal; // eye space, either side, and the splat's cutoff
 out vec4 recordAxis0;  // eye space, and the axis's length in model units
 out vec4 recordAxis1;
 out vec4 recordColor;
@@ -44,6 +45,8 @@ const float EdgeOnForeshortening = 1e-3;
 const float UnfilteredMinimumVariance = 1e-6;
 const float LowPassFadeStart = 0.75;
 const float LowPassFadeEnd = 1.5;
+const float CutoffFadeStart = 8.0;
+const float CutoffFadeEnd = 32.0;
 
 void cull()
 {
@@ -60,7 +63,8 @@ void main()
   float footprint = differential != 0 && !rectangle ? sqrt(2.0) : 1.0;
   // Culled when the whole splat lies outside the depth range: a large one reaches past the
   // near or far plane from a center outside it (its fragments are clipped there).
-  float reach = footprint * max(sqrt(cutoff), 1.0) * (abs(a0.z) + abs(a1.z));
+  float reach =
+    footprint * max(sqrt(max(cutoff, antialiasingCutoff)), 1.0) * (abs(a0.z) + abs(a1.z));
   if (!(-p.z + reach >= nearDepth && -p.z - reach <= farDepth))
   {
     cull();
@@ -105,13 +109,17 @@ void main()
   float mxy = 0.5 * (j0.x * j0.y + j1.x * j1.y);
   float myy = 0.5 * (j0.y * j0.y + j1.y * j1.y);
   float lowPass = 1.0;
+  float splatCutoff = cutoff;
   if (filterMode == 0)
   {
-    // LowPassVariance: fades to the magnified variance as the largest warped variance grows.
+    // LowPassVariance: fades to the magnified variance as the largest warped variance grows;
+    // SplatCutoff: raised to the antialiasing cutoff while the low-pass is a sizable part.
     float largest =
       0.5 * (mxx + myy) + sqrt(0.25 * (mxx - myy) * (mxx - myy) + mxy * mxy);
     lowPass = mix(1.0, magnifiedLowPass,
       clamp((largest - LowPassFadeStart) / (LowPassFadeEnd - LowPassFadeStart), 0.0, 1.0));
+    splatCutoff = cutoff + max(antialiasingCutoff - cutoff, 0.0) *
+        (1.0 - clamp((largest - CutoffFadeStart) / (CutoffFadeEnd - CutoffFadeStart), 0.0, 1.0));
   }
   else if (filterMode == 2)
   {
@@ -131,8 +139,9 @@ void main()
   // which holds both the object-space ellipse and the low-pass disk.
   vec3 conic = filterMode == 3 ? vec3(0.5, 0.0, 0.5) : vec3(0.5 * myy, -mxy, 0.5 * mxx) / detM;
   float amplitude = filterMode == 3 ? 1.0 : abs(detJ) * InverseTwoPi / sqrt(detM);
-  amplitude *= footprint * footprint;
-  vec2 lo = center - sqrt(2.0 * cutoff * vec2(mxx, myy));
+  // TruncatedMassScale: the mass the kernel would keep at the frame's cutoff.
+  amplitude *= footprint * footprint * (1.0 - exp(-cutoff)) / (1.0 - exp(-splatCutoff));
+  vec2 lo = center - sqrt(2.0 * splatCutoff * vec2(mxx, myy));
   vec2 hi = 2.0 * center - lo;
   if (rectangle)
   {
@@ -163,7 +172,7 @@ void main()
   recordCenter = vec4(center, curvature);
   recordConic = vec4(conic, amplitude);
   recordPoint = vec4(p, depthThreshold * max(length(a0), length(a1)));
-  recordNormal = vec4(n, 0.0); // either side: the attribute pass turns it (AddNormal)
+  recordNormal = vec4(n, splatCutoff); // either side: the attribute pass turns it (AddNormal)
   recordAxis0 = vec4(a0, length(axis0));
   recordAxis1 = vec4(a1, length(axis1));
   recordColor = color;

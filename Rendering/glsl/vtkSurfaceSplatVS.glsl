@@ -28,6 +28,7 @@ flat out vec3 splatAxis1;
 flat out vec2 splatExtent;    // differential points: the axes' lengths in model units
 flat out vec2 splatCurvature; // and the curvatures, negated with a back-facing normal
 flat out float splatThreshold;
+flat out float splatCutoff;
 flat out vec4 splatColor;
 flat out vec2 splatPointId;
 
@@ -49,6 +50,7 @@ void main()
   splatPoint = recordPoint.xyz;
   splatThreshold = recordPoint.w;
   splatNormal = recordNormal.xyz;
+  splatCutoff = recordNormal.w;
   splatAxis0 = recordAxis0.xyz;
   splatAxis1 = recordAxis1.xyz;
   splatExtent = vec2(recordAxis0.w, recordAxis1.w);

@@ -209,6 +209,40 @@ TEST(SurfelKernel, LowPassFadesForMagnifiedSplats)
   EXPECT_TRUE(std::isfinite(edgeOn.Conic[0][0]) && std::isfinite(edgeOn.HalfExtent.y));
 }
 
+// The antialiasing cutoff raises small splats' cutoff only (never lowers it), fades out
+// between CutoffFadeStart and CutoffFadeEnd, and the amplitude keeps the frame cutoff's mass:
+// weight times the share 1 - e^-c kept inside the kernel's own cutoff is the same.
+TEST(SurfelKernel, AntialiasingCutoffRaisesSmallSplats)
+{
+  const double middle = 0.5 * (splat::CutoffFadeStart + splat::CutoffFadeEnd);
+  EXPECT_EQ(splat::SplatCutoff(0.0, 0.6, 1.0), 1.0);
+  EXPECT_EQ(splat::SplatCutoff(splat::CutoffFadeStart, 0.6, 1.0), 1.0);
+  EXPECT_NEAR(splat::SplatCutoff(middle, 0.6, 1.0), 0.8, 1e-12);
+  EXPECT_EQ(splat::SplatCutoff(splat::CutoffFadeEnd, 0.6, 1.0), 0.6);
+  EXPECT_EQ(splat::SplatCutoff(0.0, 2.0, 1.0), 2.0);
+  EXPECT_EQ(splat::SplatCutoff(0.0, 0.6, 0.0), 0.6);
+
+  splat::SurfelProjection projection;
+  // Warped variances 1/2 J J^T: 0.5, halfway through the fade, and far beyond it.
+  for (const auto& [scale, c] : { std::pair<double, double>{ 1.0, 1.0 },
+         { std::sqrt(2.0 * middle), 0.8 }, { 100.0, 0.6 } })
+  {
+    projection.Jacobian = glm::dmat2(scale, 0.0, 0.0, scale);
+    const splat::ResamplingKernel plain = splat::MakeResamplingKernel(projection, 0.6);
+    const splat::ResamplingKernel raised =
+      splat::MakeResamplingKernel(projection, 0.6, splat::KernelFilter::EWA, 1.0, 1.0);
+    EXPECT_NEAR(raised.Cutoff, c, 1e-12) << scale;
+    EXPECT_NEAR(raised.Amplitude * (1.0 - std::exp(-raised.Cutoff)),
+      plain.Amplitude * (1.0 - std::exp(-0.6)), 1e-12 * plain.Amplitude) << scale;
+    EXPECT_NEAR(raised.HalfExtent.x, std::sqrt(2.0 * c * raised.Covariance[0][0]), 1e-9);
+  }
+  // Only the EWA filter takes it.
+  projection.Jacobian = glm::dmat2(1.0);
+  EXPECT_EQ(
+    splat::MakeResamplingKernel(projection, 0.6, splat::KernelFilter::Unfiltered, 1.0, 1.0).Cutoff,
+    0.6);
+}
+
 // Foreshortening depends on the angle of view only: 1 face-on, cos(angle) for a tilted circle,
 // whatever the distance (the minified far splats of a plane are not edge-on).
 TEST(SurfelKernel, ForeshorteningIgnoresDistance)

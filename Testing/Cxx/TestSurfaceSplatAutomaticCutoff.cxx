@@ -1,12 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkSurfaceSplatMapper's automatic cutoff (the default): 0.5 for surfels that cover their
-// surface at that cutoff, else the paper's 1 for those that cover it at 1, else 2, and any
-// cutoff set by hand as it is. Checked through GetLastCutoff() and through the image, which must be the one the
-// chosen cutoff draws when set by hand:
+// surface at that cutoff, else 0.6, else the paper's 1 for those that cover it at 1, else 2,
+// and any cutoff set by hand as it is. Checked through GetLastCutoff() and through the image,
+// which must be the one the chosen cutoff draws when set by hand:
 // - surfels on a mesh's vertices (vtkSurfelGenerator: radius of the longest edge) get 0.5;
 // - points scattered at random over the same mesh (radius from the nearest points) get 2;
-// - a grid of surfels whose radius is its spacing gets 1 (the tight disks only touch);
+// - a grid of surfels whose radius is its spacing gets 0.6 (the tight disks at 0.5 only touch);
 // - the same grid with a radius of 1.5 spacings gets 0.5;
+// - with colors from scalars, the grid's splats below splat::CutoffFadeStart (all of them in
+//   this view) take the paper's cutoff where the low-pass matters: the image is the one of
+//   cutoff 1 set by hand (to a unit of 8 bits: their weights are scaled to the mass they keep
+//   at 0.6), not the one of 0.6, while GetLastCutoff() says 0.6;
 // - differential points keep 1; SetCutoff(2) and SetCutoffToPaper() are used as set; a
 //   negative cutoff is refused with an error and changes nothing.
 #include "SplatTestUtilities.h"
@@ -112,8 +116,22 @@ int main(int, char*[])
   cloud->SetPoints(sampler->GetOutput()->GetPoints());
   CheckAutomatic(Surfels(cloud), 2.0, "points scattered over the sphere");
 
-  CheckAutomatic(Grid(0.05), 1.0, "a grid with the radius of its spacing");
+  CheckAutomatic(Grid(0.05), 0.6, "a grid with the radius of its spacing");
   CheckAutomatic(Grid(0.075), 0.5, "a grid with 1.5 times the radius of its spacing");
+
+  vtkSmartPointer<vtkPolyData> colored = Grid(0.05);
+  const double orange[3] = { 0.9, 0.6, 0.2 };
+  splattest::Paint(colored, orange, 1.0);
+  const Drawn automatic = Draw(colored, nullptr);
+  splattest::Check(automatic.Cutoff == 0.6, "a colored grid's cutoff is 0.6");
+  const double fromPaper = splattest::LargestDifference(automatic.Pixels,
+    Draw(colored, [](vtkSurfaceSplatMapper* m) { m->SetCutoffToPaper(); }).Pixels);
+  const double fromSnug = splattest::LargestDifference(
+    automatic.Pixels, Draw(colored, [](vtkSurfaceSplatMapper* m) { m->SetCutoff(0.6); }).Pixels);
+  std::printf("a colored grid: largest difference %g from cutoff 1, %g from 0.6\n", fromPaper,
+    fromSnug);
+  splattest::Check(fromPaper <= 1.0 / 255.0 && fromSnug > 1.0 / 255.0,
+    "a colored grid's small splats draw with the paper's cutoff");
 
   vtkSmartPointer<vtkPolyData> surfels = Surfels(sphere->GetOutput());
   splattest::Check(Draw(surfels, [](vtkSurfaceSplatMapper* m) { m->SetCutoff(2.0); }).Cutoff ==
