@@ -228,11 +228,11 @@ void vtkSurfaceSplatMapper::SetMagnifiedLowPassVariance(double variance)
 double vtkSurfaceSplatMapper::ChooseCutoff()
 {
   constexpr double Paper = 1.0;
-  constexpr double Wide = 2.0;
-  // Each tried in turn against a wider reference of what covering is; Wide where none covers.
-  // 0.6 is for grids whose radius is their spacing: their disks at 0.5 only touch.
-  constexpr std::array<std::array<double, 2>, 3> Ladder = { { { 0.5, Paper }, { 0.6, Paper },
-    { Paper, Wide } } };
+  constexpr double Widest = 4.0;
+  // Each tried in turn against a wider reference of what covering is; Widest where none
+  // covers. 0.6 is for grids whose radius is their spacing: their disks at 0.5 only touch.
+  constexpr std::array<std::array<double, 2>, 5> Ladder = { { { 0.5, Paper }, { 0.6, Paper },
+    { Paper, 2.0 }, { 2.0, Widest }, { 3.0, Widest } } };
   // The share of the surface a cutoff may leave uncovered: holes in fewer samples are at the
   // surface's boundary or too small to see.
   constexpr double AcceptedHoles = 0.01;
@@ -249,7 +249,7 @@ double vtkSurfaceSplatMapper::ChooseCutoff()
   if (surfels.AutomaticTime < surfels.BuildTime || surfels.AutomaticThreshold != tau)
   {
     const splat::SurfelCoverage coverage(surfels.View());
-    surfels.AutomaticCutoff = Wide;
+    surfels.AutomaticCutoff = Widest;
     for (const auto& step : Ladder)
     {
       if (coverage.UncoveredShare(step[0], step[1], tau) <= AcceptedHoles)

@@ -114,13 +114,13 @@ public:
    * more and blurs more, but fills wider gaps between scattered points.
    *
    * Default 0, automatic: 0.5 where the surfels still cover their surface at that cutoff,
-   * else 0.6, else the paper's 1 (SetCutoffToPaper) where they cover it at 1, else 2. The test
-   * is done once per input, in object space, on samples of the surfels' disks
+   * else 0.6, else the paper's 1 (SetCutoffToPaper) where they cover it at 1, else 2, 3 or 4,
+   * whichever first covers as 4 does. The test is done once per input, in object space, on samples of the surfels' disks
    * (SplatSurfelCoverage.h), each cutoff against a wider one: surfels on a mesh's vertices with
    * the radius of their longest edge pass at 0.5; a grid whose radius is its spacing passes at
    * 0.6 (its disks at 0.5 only touch, and the pixels between them would be partly
    * transparent); scattered points whose radii only reach their nearest neighbors pass at
-   * neither 0.5 nor 1. With colors from scalars, splats small enough for the screen low-pass
+   * neither 0.5 nor 1, and at 2 often still leave a percent of small holes. With colors from scalars, splats small enough for the screen low-pass
    * to be a sizable part of their kernel (largest warped variance up to 8 pixels^2, fading
    * out by 32; splat::SplatCutoff) take at least the paper's 1: a tighter cutoff truncates
    * the low-pass and lets colors that change from splat to splat alias.
@@ -128,7 +128,8 @@ public:
    * sharper than 1, faster, and more exactly where the surfels cover at it (RMSE 0.0165
    * against 0.0205 on the bunny, 0.0322 against 0.0414 on the armadillo); on points scattered
    * over the armadillo 0.5 leaves holes (0.0615) and 1 speckles of background (0.0321), which
-   * 2 closes (0.0236; 4 gives 0.0222 in 44 % more time). On the checkerboard's colors the
+   * 2 closes but for a few (0.0236; there 2 leaves 1.1 % of what 4 covers open and 3 0.3 %:
+   * 3 gives 0.0224, 4 0.0222 in more time). On the checkerboard's colors the
    * paper's 1 everywhere blurs the magnified checks (0.0834) and 0.6 everywhere aliases the
    * small splats (0.0764); the automatic cutoff, 0.6 raised to 1 for the small splats, gives
    * 0.0664.

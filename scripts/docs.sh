@@ -111,7 +111,7 @@ EOF
   fi
   row "Surface filter mode (\`SetFilterMode\`, \`--filter\`) on the report's checkerboard at a grazing angle (paper 000, figure 8), against the analytic reference: EWA (the default) stays gray where the checks are finer than the pixels, circular and unfiltered splats alias." \
     surface-reference surface-default surface-circular surface-unfiltered
-  row "Surface cutoff (\`SetCutoff\`, \`--cutoff\`): where each splat is truncated. The default picks 0.5 where the surfels still cover their surface at it (mesh vertices), else 0.6 (grids such as this one, whose tight disks at 0.5 only touch), else 1 or 2; for colors from scalars, as here, splats small enough for the screen low-pass to matter keep the paper's 1: the near checks stay sharp and the far ones do not alias." \
+  row "Surface cutoff (\`SetCutoff\`, \`--cutoff\`): where each splat is truncated. The default picks 0.5 where the surfels still cover their surface at it (mesh vertices), else 0.6 (grids such as this one, whose tight disks at 0.5 only touch), else 1 to 4; for colors from scalars, as here, splats small enough for the screen low-pass to matter keep the paper's 1: the near checks stay sharp and the far ones do not alias." \
     surface-cutoff-0.5 surface-default surface-cutoff-2
   row "Volume ordering (\`SetOrderingMode\`, \`--ordering\`) on a capture: depth-sorted (the default for captures) is the order it was trained in; the axis lists (blended, clipped; the default for density volumes) misorder overlapping Gaussians." \
     ordering-depth-sorted ordering-blended ordering-clipped
