@@ -730,6 +730,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           {
             const ScreenSplat& s = splats[bandSplats[k]];
             const DifferentialSplat* d = differential ? &differentials[bandSplats[k]] : nullptr;
+            const float splatCutoff = s.Cutoff; // a local: the fragment writes may alias s
             const int y0 = std::max(s.Y0, rowBegin);
             const int y1 = std::min(s.Y1, rowEnd);
             for (int y = y0; y <= y1; ++y)
@@ -740,7 +741,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
               // a rectangle's pixels are tested one by one.
               const float bq = s.ConicXY * dy;
               const float discriminant =
-                bq * bq - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - s.Cutoff);
+                bq * bq - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - splatCutoff);
               if (!(discriminant > 0.0f) && !rectangles)
               {
                 continue;
@@ -771,7 +772,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                        betaStep += betaStep2, numerator += s.DepthNumerator[0],
                        denominator += s.DepthDenominator[0])
               {
-                if (!rectangles && (!(beta < s.Cutoff) || beta < 0.0f))
+                if (!rectangles && (!(beta < splatCutoff) || beta < 0.0f))
                 {
                   continue; // rounding at the span's ends
                 }
