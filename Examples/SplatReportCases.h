@@ -94,7 +94,7 @@ inline const char* FilterModeName(int mode)
   }
 }
 
-// The default mapper's settings in words, e.g. "EWA, cutoff automatic (0.5 to 2), 3 layers,
+// The default mapper's settings in words, e.g. "EWA, cutoff automatic (0.5 to 4), 3 layers,
 // edge AA on".
 inline std::string DefaultSettingDescription()
 {
@@ -102,7 +102,7 @@ inline std::string DefaultSettingDescription()
   std::ostringstream text;
   const int layers = mapper->GetNumberOfLayers();
   text << FilterModeName(mapper->GetFilterMode()) << ", cutoff "
-       << (mapper->GetCutoff() > 0.0 ? Fixed(mapper->GetCutoff(), 1) : "automatic (0.5 to 2)") << ", "
+       << (mapper->GetCutoff() > 0.0 ? Fixed(mapper->GetCutoff(), 1) : "automatic (0.5 to 4)") << ", "
        << "magnified low-pass "
        << (mapper->GetMagnifiedLowPassVariance() > 0.0
               ? Fixed(mapper->GetMagnifiedLowPassVariance(), 2)
