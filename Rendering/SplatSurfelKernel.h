@@ -217,20 +217,19 @@ constexpr double LowPassFadeStart = 0.75;
 constexpr double LowPassFadeEnd = 1.5;
 
 /**
- * The variance of the screen low-pass filter for a splat whose warped basis function is
- * `warped`: the paper's 1 while its largest variance is at most LowPassFadeStart (a splat below
- * a pixel, which would alias without it; the CPU rasterizer sums these per pixel with the unit
- * filter), `magnified` once it reaches LowPassFadeEnd, linear between. A magnified splat's own
+ * The variance of the screen low-pass filter for a splat whose warped basis function has the
+ * largest variance `largestWarped`: the paper's 1 while that is at most LowPassFadeStart (a
+ * splat below a pixel, which would alias without it; the CPU rasterizer sums these per pixel
+ * with the unit filter), `magnified` once it reaches LowPassFadeEnd, linear between. A magnified splat's own
  * reconstruction is wider than the pixel and band-limits it already; the unit low-pass then
  * only blurs what it draws.
  * Its colors still need the paper's filter where they vary from splat to splat (a texture), so
  * `magnified` is 1 there and BoxFilterVariance, a pixel's own footprint, for one color.
  */
-inline double LowPassVariance(const glm::dmat2& warped, double magnified)
+inline double LowPassVariance(double largestWarped, double magnified)
 {
   const double t = std::clamp(
-    (LargestEigenvalue(warped) - LowPassFadeStart) / (LowPassFadeEnd - LowPassFadeStart), 0.0,
-    1.0);
+    (largestWarped - LowPassFadeStart) / (LowPassFadeEnd - LowPassFadeStart), 0.0, 1.0);
   return 1.0 + (magnified - 1.0) * t;
 }
 
@@ -287,11 +286,17 @@ inline ResamplingKernel MakeResamplingKernel(const SurfelProjection& projection,
   switch (filter)
   {
     case KernelFilter::EWA:
+    {
+      const double largestWarped = LargestEigenvalue(warped);
       k.Covariance = warped +
-        glm::dmat2(LowPassVariance(warped, std::max(magnifiedLowPass, BoxFilterVariance)));
-      k.Cutoff = SplatCutoff(LargestEigenvalue(warped), cutoff, antialiasingCutoff);
-      massScale = TruncatedMassScale(cutoff, k.Cutoff);
+        glm::dmat2(LowPassVariance(largestWarped, std::max(magnifiedLowPass, BoxFilterVariance)));
+      if (antialiasingCutoff > cutoff)
+      {
+        k.Cutoff = SplatCutoff(largestWarped, cutoff, antialiasingCutoff);
+        massScale = TruncatedMassScale(cutoff, k.Cutoff);
+      }
       break;
+    }
     case KernelFilter::Circular:
     {
       // The larger eigenvalue of the EWA covariance: the squared major semi-axis.

@@ -140,7 +140,11 @@ void main()
   vec3 conic = filterMode == 3 ? vec3(0.5, 0.0, 0.5) : vec3(0.5 * myy, -mxy, 0.5 * mxx) / detM;
   float amplitude = filterMode == 3 ? 1.0 : abs(detJ) * InverseTwoPi / sqrt(detM);
   // TruncatedMassScale: the mass the kernel would keep at the frame's cutoff.
-  amplitude *= footprint * footprint * (1.0 - exp(-cutoff)) / (1.0 - exp(-splatCutoff));
+  amplitude *= footprint * footprint;
+  if (splatCutoff > cutoff)
+  {
+    amplitude *= (1.0 - exp(-cutoff)) / (1.0 - exp(-splatCutoff));
+  }
   vec2 lo = center - sqrt(2.0 * splatCutoff * vec2(mxx, myy));
   vec2 hi = 2.0 * center - lo;
   if (rectangle)
