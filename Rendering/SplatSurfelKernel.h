@@ -220,9 +220,9 @@ constexpr double LowPassFadeEnd = 1.5;
  * The variance of the screen low-pass filter for a splat whose warped basis function has the
  * largest variance `largestWarped`: the paper's 1 while that is at most LowPassFadeStart (a
  * splat below a pixel, which would alias without it; the CPU rasterizer sums these per pixel
- * with the unit filter), `magnified` once it reaches LowPassFadeEnd, linear between. A magnified splat's own
- * reconstruction is wider than the pixel and band-limits it already; the unit low-pass then
- * only blurs what it draws.
+ * with the unit filter), `magnified` once it reaches LowPassFadeEnd, linear between. A
+ * magnified splat's own reconstruction is wider than the pixel and band-limits it already; the
+ * unit low-pass then only blurs what it draws.
  * Its colors still need the paper's filter where they vary from splat to splat (a texture), so
  * `magnified` is 1 there and BoxFilterVariance, a pixel's own footprint, for one color.
  */
@@ -290,9 +290,9 @@ inline ResamplingKernel MakeResamplingKernel(const SurfelProjection& projection,
       const double largestWarped = LargestEigenvalue(warped);
       k.Covariance = warped +
         glm::dmat2(LowPassVariance(largestWarped, std::max(magnifiedLowPass, BoxFilterVariance)));
-      if (antialiasingCutoff > cutoff)
+      k.Cutoff = SplatCutoff(largestWarped, cutoff, antialiasingCutoff);
+      if (k.Cutoff > cutoff)
       {
-        k.Cutoff = SplatCutoff(largestWarped, cutoff, antialiasingCutoff);
         massScale = TruncatedMassScale(cutoff, k.Cutoff);
       }
       break;
