@@ -103,9 +103,9 @@ inline std::string DefaultSettingDescription()
   const int layers = mapper->GetNumberOfLayers();
   text << FilterModeName(mapper->GetFilterMode()) << ", cutoff "
        << (mapper->GetCutoff() > 0.0 ? Fixed(mapper->GetCutoff(), 1) : "automatic (0.5 to 4)") << ", "
-       << "magnified low-pass "
+       << "low-pass "
        << (mapper->GetMagnifiedLowPassVariance() > 0.0
-              ? Fixed(mapper->GetMagnifiedLowPassVariance(), 2)
+              ? Fixed(mapper->GetMagnifiedLowPassVariance(), 2) + " magnified"
               : "automatic (1/12 or 1)")
        << ", " << layers << (layers == 1 ? " layer" : " layers") << ", edge AA "
        << (mapper->GetEdgeAntialiasing() ? "on" : "off") << ", minified variance "

@@ -2,7 +2,8 @@
 /**
  * @file SplatMinifiedSurfel.h
  * @brief The single-precision setup of a surfel that decides whether it is minified (its warped
- * basis function far below a pixel) and, if so, what the pixel holding its center sums of it.
+ * basis function far below a pixel) and, if so, what the pixel holding its center sums of it
+ * or, under a low-pass below the paper's, its own kernel.
  *
  * VTK-free (GLM only). The CPU rasterizer runs it on every surfel of a frame that sums minified
  * splats per pixel, before, and mostly instead of, the double-precision setup of the exact
@@ -119,7 +120,8 @@ public:
     int Outcome[BatchSize];
     float CenterX[BatchSize], CenterY[BatchSize];
     float SlopeX[BatchSize], SlopeY[BatchSize];
-    float Threshold[BatchSize], Mass[BatchSize], Spread[BatchSize];
+    float Threshold[BatchSize], Mass[BatchSize];
+    float WarpedXX[BatchSize], WarpedXY[BatchSize], WarpedYY[BatchSize]; // J Vr J^T, pixels^2
   };
 
   /// Loads surfel j of a batch: its position in double precision to eye space (so that
@@ -230,12 +232,75 @@ public:
       batch.Threshold[j] = depthThreshold *
         std::sqrt(std::max(a0x * a0x + a0y * a0y + a0z * a0z, a1x * a1x + a1y * a1y + a1z * a1z));
       batch.Mass[j] = batch.MassScale[j] * std::abs(det);
-      batch.Spread[j] = 0.5f * (xx + yy);
+      batch.WarpedXX[j] = xx;
+      batch.WarpedXY[j] = xy;
+      batch.WarpedYY[j] = yy;
       // Normalized, not turned: two-sided lighting turns the filtered normal (AddNormal).
       const float scale = 1.0f / std::sqrt(nx * nx + ny * ny + nz * nz);
       batch.NX[j] = scale * nx;
       batch.NY[j] = scale * ny;
       batch.NZ[j] = scale * nz;
+    }
+  }
+
+  /// The kernels of a projected batch's minified surfels, for frames that draw each of them
+  /// (under a screen low-pass below the paper's) instead of summing them per pixel.
+  struct Kernels
+  {
+    float ConicXX[BatchSize], ConicXY[BatchSize], ConicYY[BatchSize]; // 1/2 M^-1
+    float Amplitude[BatchSize];
+    float ReachX[BatchSize], ReachY[BatchSize]; // half sizes of the cutoff ellipse's box
+    // The tangent plane's eye depth at pixel (x, y): N.(x, y, 1) / D.(x, y, 1) (PlaneDepth).
+    float Numerator[3][BatchSize], Denominator[3][BatchSize];
+  };
+
+  /**
+   * The EWA kernels (MakeResamplingKernel) of the first `count` surfels of a projected batch
+   * under a screen low-pass of variance `lowPass` (at least UnfilteredMinimumVariance), cut off
+   * at `cutoff`, their mass scaled by `massScale`; their depth planes from the frame's pixel
+   * rays (MakePlaneDepth). Meaningful where the outcome is Minified.
+   */
+  void ProjectKernels(const Batch& batch, int count, float lowPass, float cutoff,
+    float massScale, const glm::mat3& rayOrigin, const glm::mat3& rayDirection,
+    Kernels& out) const
+  {
+    const float amplitudeScale = massScale * static_cast<float>(InverseTwoPi);
+    const float perspective = this->Perspective ? 1.0f : 0.0f;
+    for (int j = 0; j < count; ++j)
+    {
+      const float xx = batch.WarpedXX[j] + lowPass;
+      const float yy = batch.WarpedYY[j] + lowPass;
+      const float xy = batch.WarpedXY[j];
+      const float det = xx * yy - xy * xy;
+      const float inverseDet = 1.0f / (det > 0.0f ? det : 1.0f);
+      out.ConicXX[j] = 0.5f * yy * inverseDet;
+      out.ConicXY[j] = -xy * inverseDet;
+      out.ConicYY[j] = 0.5f * xx * inverseDet;
+      out.Amplitude[j] =
+        det > 0.0f ? amplitudeScale * batch.Mass[j] * std::sqrt(inverseDet) : 0.0f;
+      out.ReachX[j] = std::sqrt(2.0f * cutoff * xx);
+      out.ReachY[j] = std::sqrt(2.0f * cutoff * yy);
+      // MakePlaneDepth; a plane seen edge-on takes the center's depth.
+      const float px = batch.PX[j], py = batch.PY[j], pz = batch.PZ[j];
+      const float nx = batch.NX[j], ny = batch.NY[j], nz = batch.NZ[j];
+      float origin[3], direction[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        origin[c] = nx * rayOrigin[c][0] + ny * rayOrigin[c][1] + nz * rayOrigin[c][2];
+        direction[c] =
+          nx * rayDirection[c][0] + ny * rayDirection[c][1] + nz * rayDirection[c][2];
+      }
+      // n . (p / -p.z) with perspective, n . (0, 0, -1) without: against the ray's length.
+      const float inverseDepth = 1.0f / (pz != 0.0f ? -pz : 1.0f);
+      const float rayX = perspective * px * inverseDepth, rayY = perspective * py * inverseDepth;
+      const float facing = rayX * nx + rayY * ny - nz;
+      const bool plane = facing * facing > 1e-12f * (rayX * rayX + rayY * rayY + 1.0f);
+      out.Numerator[0][j] = plane ? -origin[0] : 0.0f;
+      out.Numerator[1][j] = plane ? -origin[1] : 0.0f;
+      out.Numerator[2][j] = plane ? nx * px + ny * py + nz * pz - origin[2] : -pz;
+      out.Denominator[0][j] = plane ? direction[0] : 0.0f;
+      out.Denominator[1][j] = plane ? direction[1] : 0.0f;
+      out.Denominator[2][j] = plane ? direction[2] : 1.0f;
     }
   }
 
@@ -265,7 +330,7 @@ public:
     out.DepthSlope[1] = batch.SlopeY[j];
     out.Threshold = batch.Threshold[j];
     out.Mass = batch.Mass[j];
-    out.Spread = batch.Spread[j];
+    out.Spread = 0.5f * (batch.WarpedXX[j] + batch.WarpedYY[j]);
     out.Normal[0] = batch.NX[j];
     out.Normal[1] = batch.NY[j];
     out.Normal[2] = batch.NZ[j];

@@ -218,19 +218,20 @@ constexpr double LowPassFadeEnd = 1.5;
 
 /**
  * The variance of the screen low-pass filter for a splat whose warped basis function has the
- * largest variance `largestWarped`: the paper's 1 while that is at most LowPassFadeStart (a
- * splat below a pixel, which would alias without it; the CPU rasterizer sums these per pixel
- * with the unit filter), `magnified` once it reaches LowPassFadeEnd, linear between. A
+ * largest variance `largestWarped`: `minified` while that is at most LowPassFadeStart (a
+ * splat below a pixel), `magnified` once it reaches LowPassFadeEnd, linear between. A
  * magnified splat's own reconstruction is wider than the pixel and band-limits it already; the
  * unit low-pass then only blurs what it draws.
- * Its colors still need the paper's filter where they vary from splat to splat (a texture), so
- * `magnified` is 1 there and BoxFilterVariance, a pixel's own footprint, for one color.
+ * Colors that vary from splat to splat (a texture) need the paper's filter, 1 for both (the CPU
+ * rasterizer sums minified splats per pixel under it). Splats of one color have no colors to
+ * alias: a pixel's own footprint, BoxFilterVariance, for both keeps their silhouettes
+ * antialiased without spreading them.
  */
-inline double LowPassVariance(double largestWarped, double magnified)
+inline double LowPassVariance(double largestWarped, double minified, double magnified)
 {
   const double t = std::clamp(
     (largestWarped - LowPassFadeStart) / (LowPassFadeEnd - LowPassFadeStart), 0.0, 1.0);
-  return 1.0 + (magnified - 1.0) * t;
+  return minified + (magnified - minified) * t;
 }
 
 /// Largest warped variance (pixels^2) up to which a splat gets at least the antialiasing cutoff
@@ -266,8 +267,9 @@ inline double TruncatedMassScale(double cutoff, double splatCutoff)
 
 /**
  * Builds the kernel of eq. (6) from a projection. With the EWA filter the low-pass term
- * (LowPassVariance, `magnifiedLowPass` at least BoxFilterVariance) keeps M invertible even for
- * an edge-on surfel whose J is singular; its amplitude |J| then goes to zero. Its cutoff c is
+ * (LowPassVariance: `magnifiedLowPass` at least BoxFilterVariance, `minifiedLowPass` at least
+ * UnfilteredMinimumVariance) keeps M invertible even for an edge-on surfel whose J is
+ * singular; its amplitude |J| then goes to zero. Its cutoff c is
  * SplatCutoff's (`cutoff` but where `antialiasingCutoff` raises it), its amplitude scaled to
  * the mass it would keep at `cutoff` (TruncatedMassScale). The bounding box of the ellipse
  * 1/2 x^T M^-1 x = c has half sizes sqrt(2 c M_xx), sqrt(2 c M_yy), with no
@@ -275,7 +277,7 @@ inline double TruncatedMassScale(double cutoff, double splatCutoff)
  */
 inline ResamplingKernel MakeResamplingKernel(const SurfelProjection& projection, double cutoff,
   KernelFilter filter = KernelFilter::EWA, double magnifiedLowPass = 1.0,
-  double antialiasingCutoff = 0.0)
+  double antialiasingCutoff = 0.0, double minifiedLowPass = 1.0)
 {
   ResamplingKernel k;
   const glm::dmat2& J = projection.Jacobian;
@@ -289,7 +291,9 @@ inline ResamplingKernel MakeResamplingKernel(const SurfelProjection& projection,
     {
       const double largestWarped = LargestEigenvalue(warped);
       k.Covariance = warped +
-        glm::dmat2(LowPassVariance(largestWarped, std::max(magnifiedLowPass, BoxFilterVariance)));
+        glm::dmat2(LowPassVariance(largestWarped,
+          std::max(minifiedLowPass, UnfilteredMinimumVariance),
+          std::max(magnifiedLowPass, BoxFilterVariance)));
       k.Cutoff = SplatCutoff(largestWarped, cutoff, antialiasingCutoff);
       if (k.Cutoff > cutoff)
       {

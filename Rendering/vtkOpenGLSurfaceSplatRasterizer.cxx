@@ -326,6 +326,8 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::SetSplatUniforms(vtkShaderProgr
   program->SetUniformf(
     "antialiasingCutoff", static_cast<float>(settings->GetAntialiasingCutoff()));
   program->SetUniformf(
+    "minifiedLowPass", static_cast<float>(settings->GetMinifiedLowPassVariance()));
+  program->SetUniformf(
     "magnifiedLowPass", static_cast<float>(settings->GetMagnifiedLowPassVariance()));
   program->SetUniformi("filterMode",
     approximateFilter ? ApproximateFilterMode : static_cast<int>(settings->GetFilter()));

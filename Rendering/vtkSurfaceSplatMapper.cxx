@@ -633,6 +633,13 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     ? this->MagnifiedLowPassVariance
     : this->Surfels->ColorsFromScalars ? 1.0 : splat::BoxFilterVariance;
   this->Rasterizer->SetMagnifiedLowPassVariance(this->LastMagnifiedLowPassVariance);
+  // Minified surfels of one color take a pixel's box filter too; differential points, whose
+  // rectangles need not overlap, keep the paper's low-pass.
+  this->LastMinifiedLowPassVariance = this->MagnifiedLowPassVariance == 0.0 &&
+      this->Primitive == SURFELS && !this->Surfels->ColorsFromScalars
+    ? splat::BoxFilterVariance
+    : 1.0;
+  this->Rasterizer->SetMinifiedLowPassVariance(this->LastMinifiedLowPassVariance);
 
   this->Compositor->MoveGraphicsResources(ren, this);
   // Picking draws with OpenGL whatever the backend: the selector reads the framebuffer.
@@ -828,6 +835,7 @@ void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MagnifiedLowPassVariance: " << this->MagnifiedLowPassVariance
      << (this->MagnifiedLowPassVariance > 0.0 ? "\n" : " (automatic)\n");
   os << indent << "LastMagnifiedLowPassVariance: " << this->LastMagnifiedLowPassVariance << "\n";
+  os << indent << "LastMinifiedLowPassVariance: " << this->LastMinifiedLowPassVariance << "\n";
   os << indent << "MinifiedVariance: " << this->Rasterizer->GetMinifiedVariance() << "\n";
   os << indent << "LevelOfDetail: " << this->LevelOfDetail << "\n";
   os << indent << "DepthThreshold: " << this->Rasterizer->GetDepthThreshold() << "\n";

@@ -151,32 +151,46 @@ public:
    * pixel (splat::LowPassVariance). 1 (SetMagnifiedLowPassVarianceToPaper) is the paper's
    * filter for every splat; values down to 1/12 (a pixel's box filter) are allowed.
    *
-   * Default 0, automatic: 1/12 for surfels of one color, 1 for colors from scalars, which a
-   * smaller low-pass lets alias wherever they change from splat to splat. Why: in `splat_report`'s
-   * tables (512x384, CPU) the unit low-pass only blurs a magnified surface's shading and
-   * silhouettes against the supersampled mesh: RMSE 0.0165 against 0.0184 on the bunny seen
-   * whole, 0.0322 against 0.0340 on the armadillo, no slower; on the checkerboard's colors it
-   * would alias (0.1213 against 0.0834 at 1/12). GetLastMagnifiedLowPassVariance() tells what
-   * the last render used.
+   * Default 0, automatic: for surfels of one color, 1/12 for every splat, minified ones too
+   * (each then draws its own kernel, see SetMinifiedVariance); for colors from scalars the
+   * paper's 1, since a smaller low-pass lets colors alias wherever they change from splat to
+   * splat. Set by hand, the variance holds for magnified splats and minified ones keep the
+   * paper's. Minified surfels must overlap, as surfels of a surface do, to cover the pixel
+   * centers under the box filter; the paper's filter draws even lone ones (points far
+   * smaller than their spacing) a pixel wide.
+   * Why: in `splat_report`'s tables (512x384, CPU) the unit low-pass only blurs a magnified
+   * surface's shading and silhouettes against the supersampled mesh: RMSE 0.0165 against
+   * 0.0184 on the bunny seen whole, 0.0322 against 0.0340 on the armadillo, no slower. On the
+   * 1 M-surfel sphere seen whole, about 17 surfels to a pixel, it spreads the silhouette over
+   * three pixels: 0.0029 summed per pixel under it against 0.0015 at 1/12, in about a fifth
+   * more time. No low-pass at all (FilterMode UNFILTERED) reaches 0.0009 there, with
+   * silhouettes that are not antialiased. On the checkerboard's colors 1/12 would alias
+   * (0.1213 against 0.0834). GetLastMagnifiedLowPassVariance() and
+   * GetLastMinifiedLowPassVariance() tell what the last render used.
    */
   void SetMagnifiedLowPassVariance(double variance);
   vtkGetMacro(MagnifiedLowPassVariance, double);
   void SetMagnifiedLowPassVarianceToAutomatic() { this->SetMagnifiedLowPassVariance(0.0); }
   void SetMagnifiedLowPassVarianceToPaper() { this->SetMagnifiedLowPassVariance(1.0); }
   vtkGetMacro(LastMagnifiedLowPassVariance, double);
+  vtkGetMacro(LastMinifiedLowPassVariance, double);
   ///@}
 
   ///@{
   /**
    * CPU backend: opaque surfels whose warped basis function has no variance above this many
    * pixels^2 (no larger than the screen low-pass filter: the usual case for dense clouds seen
-   * whole) are summed into the pixel holding their center and spread by the low-pass filter
-   * once per pixel, instead of each drawing its own kernel over several pixels: several times
-   * faster on dense data, within a small error of the exact kernels (see
-   * vtkSurfaceSplatRasterizer::SetMinifiedVariance). A frame takes this path only where a
-   * sample of the surfels in view finds at least a quarter of them minified: on a magnified
-   * scan it only costs (the bunny seen whole drew 25 % slower with it, one splat in 34620
-   * minified). Default 0.75; 0 draws every splat with its exact kernel.
+   * whole) are set up in single precision, in batches. Under the paper's low-pass (colors from
+   * scalars) they are summed into the pixel holding their center and spread by the low-pass
+   * filter once per pixel, instead of each drawing its own kernel over several pixels: several
+   * times faster on dense data, within a small error of the exact kernels (see
+   * vtkSurfaceSplatRasterizer::SetMinifiedVariance). Surfels of one color, which take a
+   * pixel's box filter there (SetMagnifiedLowPassVariance), each draw their kernel, which
+   * reaches only the pixel centers next to it. A frame takes this path only where a sample of
+   * the surfels
+   * in view finds at least a quarter of them minified: on a magnified scan it only costs
+   * (the bunny seen whole drew 25 % slower with it, one splat in 34620 minified). Default
+   * 0.75; 0 draws every splat with its exact kernel.
    */
   void SetMinifiedVariance(double variance);
   double GetMinifiedVariance();
@@ -431,6 +445,7 @@ protected:
   double LastCutoff = 0.0;
   double MagnifiedLowPassVariance = 0.0;
   double LastMagnifiedLowPassVariance = 0.0;
+  double LastMinifiedLowPassVariance = 1.0;
 
   vtkIdType NumberOfSplats = 0;
   vtkIdType NumberOfSkippedPoints = 0;

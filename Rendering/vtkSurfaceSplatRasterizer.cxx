@@ -222,6 +222,7 @@ struct vtkSurfaceSplatRasterizer::Internals
   std::vector<vtkSurfelHierarchy::BackRegion> BackRegions; // and its regions facing away
   std::vector<std::uint8_t> CullReasons; // per splat: why it is left out, or Kept, or Minified
   std::vector<DifferentialSplat> DifferentialSplats; // parallel to Splats; empty for surfels
+  std::vector<std::uint32_t> SplatBands; // per kept splat: first band, last in the high half
   std::vector<vtkIdType> BandOffsets; // per band, into BandSplats
   std::vector<vtkIdType> BandSplats;  // splat indices, band by band, in input order
   splat::MinifiedSplatCells MinifiedCells;
@@ -497,8 +498,63 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   ScreenSplat* const splats = this->Internal->Splats.get();
   std::vector<std::uint8_t>& reasons = this->Internal->CullReasons;
   reasons.resize(count);
+  // The bands of the kept splats, apart from them: binning reads only these and the reasons.
+  std::vector<std::uint32_t>& splatBands = this->Internal->SplatBands;
+  splatBands.resize(count);
+  auto bandsOf = [](const ScreenSplat& s)
+  { return static_cast<std::uint32_t>(s.Y0 / BandHeight | (s.Y1 / BandHeight) << 16); };
   const glm::dmat3 axisToEye(modelToEye);
   const glm::dvec3 eyeTranslation(modelToEye[3]);
+  // Minified splats are summed per pixel under the paper's unit low-pass; under a smaller one
+  // (splats of one color) each is drawn with its own kernel, which then reaches only the pixel
+  // centers next to it, set up from its single-precision projection.
+  const bool sumMinified = this->MinifiedLowPassVariance >= 1.0;
+  const double minifiedLowPass =
+    std::max(this->MinifiedLowPassVariance, splat::UnfilteredMinimumVariance);
+  const double minifiedMassScale =
+    widestCutoff > cutoff ? splat::TruncatedMassScale(cutoff, widestCutoff) : 1.0;
+  const float minifiedLowPassF = static_cast<float>(minifiedLowPass);
+  const glm::mat3 rayOrigin(rays.Origin), rayDirection(rays.Direction);
+  // Returns Kept, or why not: a kernel between pixel centers draws nothing.
+  auto setUpMinified = [&](const splat::MinifiedSurfelProjector::Batch& batch,
+                         const splat::MinifiedSurfelProjector::Kernels& kernels, int j,
+                         const float* color, ScreenSplat& s) -> std::uint8_t
+  {
+    const float cx = batch.CenterX[j], cy = batch.CenterY[j];
+    const float rx = kernels.ReachX[j], ry = kernels.ReachY[j];
+    if (!(cx + rx > 0.0f && cx - rx < width && cy + ry > 0.0f && cy - ry < height))
+    {
+      return OutsideFrustum; // also keeps the conversions below in range
+    }
+    // The pixels whose centers x + 0.5 lie within the box, as CoveredPixels.
+    s.X0 = std::max(-splat::FloorToInt(rx + 0.5f - cx), 0);
+    s.X1 = std::min(splat::FloorToInt(cx + rx - 0.5f), width - 1);
+    s.Y0 = std::max(-splat::FloorToInt(ry + 0.5f - cy), 0);
+    s.Y1 = std::min(splat::FloorToInt(cy + ry - 0.5f), height - 1);
+    if (!(kernels.Amplitude[j] > 0.0f) || s.X0 > s.X1 || s.Y0 > s.Y1)
+    {
+      return Negligible;
+    }
+    s.CenterX = cx;
+    s.CenterY = cy;
+    s.ConicXX = kernels.ConicXX[j];
+    s.ConicXY = kernels.ConicXY[j];
+    s.ConicYY = kernels.ConicYY[j];
+    s.Amplitude = kernels.Amplitude[j];
+    s.Cutoff = widestCutoffF;
+    s.Threshold = batch.Threshold[j];
+    for (int c = 0; c < 3; ++c)
+    {
+      s.DepthNumerator[c] = kernels.Numerator[c][j];
+      s.DepthDenominator[c] = kernels.Denominator[c][j];
+      s.Color[c] = color[c];
+    }
+    s.Normal[0] = batch.NX[j];
+    s.Normal[1] = batch.NY[j];
+    s.Normal[2] = batch.NZ[j];
+    s.Alpha = 1.0f;
+    return Kept;
+  };
   // Steps 1 and 2 for splats [first, last).
   auto drawRange = [&](vtkIdType first, vtkIdType last)
   {
@@ -531,6 +587,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
                            : Source{ &surfels, static_cast<std::size_t>(k), 1.0 };
         };
         splat::MinifiedSurfelProjector::Batch batch;
+        splat::MinifiedSurfelProjector::Kernels kernels;
         for (vtkIdType batchBegin = begin; batchBegin < end;
              batchBegin += splat::MinifiedSurfelProjector::BatchSize)
         {
@@ -551,6 +608,12 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
           if (minify)
           {
             minifiedProjector.Project(batch, batchCount);
+            if (!sumMinified)
+            {
+              minifiedProjector.ProjectKernels(batch, batchCount, minifiedLowPassF,
+                widestCutoffF, static_cast<float>(minifiedMassScale), rayOrigin, rayDirection,
+                kernels);
+            }
           }
           for (int j = 0; j < batchCount; ++j)
           {
@@ -571,7 +634,15 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
               switch (batch.Outcome[j])
               {
                 case splat::MinifiedSurfelProjector::Minified:
-                  if (minifiedProjector.Fill(batch, j, m))
+                  if (!sumMinified)
+                  {
+                    reason = setUpMinified(batch, kernels, j, source.Colors + 3 * i, splats[k]);
+                    if (reason == Kept)
+                    {
+                      splatBands[k] = bandsOf(splats[k]);
+                    }
+                  }
+                  else if (minifiedProjector.Fill(batch, j, m))
                   {
                     std::copy(source.Colors + 3 * i, source.Colors + 3 * i + 3, m.Color);
                     m.Alpha = 1.0f;
@@ -622,7 +693,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
             }
             const splat::ResamplingKernel kernel =
               splat::MakeResamplingKernel(projection, cutoff, filter, magnifiedLowPass,
-                antialiasingCutoff);
+                antialiasingCutoff, minifiedLowPass);
             glm::ivec4 box;
             if (rectangles
                 ? !RectanglePixels(eyeToClip, viewport, p, a0, a1, box)
@@ -635,6 +706,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
             s.X1 = box.y;
             s.Y0 = box.z;
             s.Y1 = box.w;
+            splatBands[k] = bandsOf(s);
             reason = Kept;
 
             s.CenterX = static_cast<float>(kernel.Center.x);
@@ -689,8 +761,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
       {
         continue;
       }
-      const ScreenSplat& s = splats[i];
-      for (int b = s.Y0 / BandHeight; b <= s.Y1 / BandHeight; ++b)
+      for (std::uint32_t b = splatBands[i] & 0xffff; b <= splatBands[i] >> 16; ++b)
       {
         ++offsets[b + 1];
       }
@@ -708,8 +779,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         {
           continue;
         }
-        const ScreenSplat& s = splats[i];
-        for (int b = s.Y0 / BandHeight; b <= s.Y1 / BandHeight; ++b)
+        for (std::uint32_t b = splatBands[i] & 0xffff; b <= splatBands[i] >> 16; ++b)
         {
           bandSplats[fill[b]++] = i;
         }
@@ -1098,6 +1168,7 @@ void vtkSurfaceSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
   os << indent << "AntialiasingCutoff: " << this->AntialiasingCutoff << "\n";
   os << indent << "MagnifiedLowPassVariance: " << this->MagnifiedLowPassVariance << "\n";
+  os << indent << "MinifiedLowPassVariance: " << this->MinifiedLowPassVariance << "\n";
   os << indent << "MinifiedVariance: " << this->MinifiedVariance << "\n";
   os << indent << "SplattedCount: " << this->SplattedCount << "\n";
   os << indent << "MinifiedCount: " << this->MinifiedCount << "\n";

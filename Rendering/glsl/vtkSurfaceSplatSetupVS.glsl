@@ -21,7 +21,8 @@ uniform float nearDepth;
 uniform float farDepth;
 uniform float cutoff;
 uniform float antialiasingCutoff; // SplatCutoff's least cutoff where the low-pass matters
-uniform float magnifiedLowPass; // LowPassVariance's variance for magnified splats
+uniform float minifiedLowPass; // LowPassVariance's variance for minified splats
+uniform float magnifiedLowPass; // and for magnified ones
 uniform int filterMode; // 0 EWA, 1 circular, 2 unfiltered, 3 approximate
 uniform int differential; // axes are the rectangles' half-widths along the principal directions
 uniform int perspective;
@@ -112,11 +113,12 @@ void main()
   float splatCutoff = cutoff;
   if (filterMode == 0)
   {
-    // LowPassVariance: fades to the magnified variance as the largest warped variance grows;
+    // LowPassVariance: fades from the minified to the magnified variance as the largest
+    // warped variance grows;
     // SplatCutoff: raised to the antialiasing cutoff while the low-pass is a sizable part.
     float largest =
       0.5 * (mxx + myy) + sqrt(0.25 * (mxx - myy) * (mxx - myy) + mxy * mxy);
-    lowPass = mix(1.0, magnifiedLowPass,
+    lowPass = mix(max(minifiedLowPass, UnfilteredMinimumVariance), magnifiedLowPass,
       clamp((largest - LowPassFadeStart) / (LowPassFadeEnd - LowPassFadeStart), 0.0, 1.0));
     splatCutoff = cutoff + max(antialiasingCutoff - cutoff, 0.0) *
         (1.0 - clamp((largest - CutoffFadeStart) / (CutoffFadeEnd - CutoffFadeStart), 0.0, 1.0));

@@ -2,7 +2,8 @@
 // Unit tests of the CPU rasterizer's minified splats (vtkSurfaceSplatRasterizer::
 // SetMinifiedVariance): summed per pixel and spread by the low-pass filter once per pixel, they
 // stay within a stated error of the exact per-splat kernels, keep antialiased silhouettes against
-// the background and against another surface, and give the same image for any number of threads.
+// the background and against another surface, and give the same image for any number of threads;
+// under a pixel's box filter (surfels of one color) each draws its own kernel instead.
 #include "SplatRasterizerTestUtilities.h"
 #include "vtkSurfaceSplatRasterizer.h"
 #include "vtkSurfelHierarchy.h"
@@ -83,7 +84,9 @@ const char* Name(Path path)
   return path == Path::Exact ? "exact" : path == Path::Minified ? "minified" : "level of detail";
 }
 
-Frame Draw(const SurfelGrid& surfels, const vtkSurfaceSplatRasterizer::Camera& camera, Path path)
+// `minifiedLowPass` below 1: minified splats are drawn each with its kernel, not summed.
+Frame Draw(const SurfelGrid& surfels, const vtkSurfaceSplatRasterizer::Camera& camera, Path path,
+  double minifiedLowPass = 1.0)
 {
   std::vector<splat::Light> lights(1);
   lights[0].Direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
@@ -91,6 +94,7 @@ Frame Draw(const SurfelGrid& surfels, const vtkSurfaceSplatRasterizer::Camera& c
   material.Specular = glm::vec3(0.3f);
   material.SpecularPower = 20.0f;
   vtkNew<vtkSurfaceSplatRasterizer> rasterizer;
+  rasterizer->SetMinifiedLowPassVariance(minifiedLowPass);
   if (path == Path::Exact)
   {
     rasterizer->SetMinifiedVariance(0.0);
@@ -217,6 +221,38 @@ TEST(MinifiedSplats, SphereOfSubpixelSplatsMatchesTheExactKernels)
     EXPECT_LT(edgeMinified, (path == Path::Minified ? 2.0 : 2.5) * edgeExact);
     EXPECT_NEAR(radiusMinified, radius, 0.5);
     EXPECT_NEAR(radiusExact, radius, 0.5);
+  }
+}
+
+// Under a pixel's box filter for minified splats (surfels of one color), the minified path
+// draws each splat's kernel from its single-precision setup instead of summing it: the image of
+// the exact kernels' double-precision setup, with a sharper silhouette than the unit low-pass
+// draws, still partly covered.
+TEST(MinifiedSplats, BoxFilteredSplatsMatchTheExactKernels)
+{
+  const SurfelGrid sphere = SurfelSphere(400000, 0.3, glm::dvec3(0.0));
+  const vtkSurfaceSplatRasterizer::Camera camera = FrontoParallelCamera(1.8, Size);
+  const double box = splat::BoxFilterVariance;
+  const Frame exact = Draw(sphere, camera, Path::Exact, box);
+  const Frame summed = Draw(sphere, camera, Path::Minified);
+  for (const Path path : { Path::Minified, Path::LevelOfDetail })
+  {
+    const Frame filtered = Draw(sphere, camera, path, box);
+    EXPECT_EQ(filtered.Minified, 0);
+    EXPECT_GT(filtered.Splatted, 0.3 * exact.Splatted);
+    const double color = ColorRMSE(exact, filtered);
+    const double alpha = RMSE(exact, filtered, 3, [](std::size_t) { return true; });
+    const std::size_t edgeExact = PartlyCovered(exact);
+    const std::size_t edge = PartlyCovered(filtered);
+    const std::size_t edgeSummed = PartlyCovered(summed);
+    std::printf("sphere, box-filtered, %s: color RMSE %.5f, alpha RMSE %.5f against the exact "
+                "kernels; partly covered pixels %zu (exact %zu, summed %zu)\n",
+      Name(path), color, alpha, edge, edgeExact, edgeSummed);
+    EXPECT_LT(color, path == Path::Minified ? 0.003 : 0.015);
+    EXPECT_LT(alpha, path == Path::Minified ? 0.003 : 0.03);
+    EXPECT_GT(edge, SilhouetteRadius(0.3, 1.8));
+    EXPECT_LT(edge, 0.75 * edgeSummed);
+    EXPECT_NEAR(CoveredRadius(filtered), SilhouetteRadius(0.3, 1.8), 0.5);
   }
 }
 

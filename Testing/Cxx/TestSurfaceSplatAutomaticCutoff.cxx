@@ -7,7 +7,8 @@
 // - points scattered at random over the same mesh (radius from the nearest points) get 3 (2
 //   leaves more than 1% of what 4 covers open);
 // - a grid of surfels whose radius is its spacing gets 0.6 (the tight disks at 0.5 only touch);
-// - the same grid with a radius of 1.5 spacings gets 0.5;
+// - the same grid with a radius of 1.5 spacings gets 0.5; surfels of one color take a pixel's
+//   box filter where they are minified too;
 // - with colors from scalars, the grid's splats below splat::CutoffFadeStart (all of them in
 //   this view) take the paper's cutoff where the low-pass matters: the image is the one of
 //   cutoff 1 set by hand (to a unit of 8 bits: their weights are scaled to the mass they keep
@@ -35,6 +36,7 @@ struct Drawn
 {
   double Cutoff;
   std::vector<double> Pixels;
+  double MinifiedLowPass;
 };
 
 // Draws `surfels` with a CPU mapper configured by `apply`: the cutoff it used and its image.
@@ -58,17 +60,21 @@ Drawn Draw(vtkPolyData* surfels, const std::function<void(vtkSurfaceSplatMapper*
   renderer->GetActiveCamera()->Dolly(1.5);
   renderer->ResetCameraClippingRange();
   window->Render();
-  return { mapper->GetLastCutoff(), splattest::ToRGB(splattest::Capture(window)) };
+  return { mapper->GetLastCutoff(), splattest::ToRGB(splattest::Capture(window)),
+    mapper->GetLastMinifiedLowPassVariance() };
 }
 
 // The default's cutoff on `surfels` must be `expected`, with the image of that cutoff set by
-// hand.
+// hand, and its minified splats (of one color) a pixel's box filter.
 void CheckAutomatic(vtkPolyData* surfels, double expected, const std::string& what)
 {
   const Drawn automatic = Draw(surfels, nullptr);
-  std::printf("%s: automatic cutoff %g\n", what.c_str(), automatic.Cutoff);
+  std::printf("%s: automatic cutoff %g, minified low-pass %g\n", what.c_str(), automatic.Cutoff,
+    automatic.MinifiedLowPass);
   splattest::Check(automatic.Cutoff == expected,
     what + " draws with cutoff " + std::to_string(expected));
+  splattest::Check(automatic.MinifiedLowPass == 1.0 / 12.0,
+    what + ": minified splats take the box filter");
   const Drawn byHand = Draw(surfels, [&](vtkSurfaceSplatMapper* m) { m->SetCutoff(expected); });
   splattest::Check(splattest::LargestDifference(automatic.Pixels, byHand.Pixels) == 0.0,
     what + ": the image is the one of its cutoff set by hand");

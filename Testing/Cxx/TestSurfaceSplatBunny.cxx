@@ -72,11 +72,14 @@ int main(int argc, char* argv[])
               << mapper->GetNumberOfSkippedPoints() << " skipped.\n";
     return EXIT_FAILURE;
   }
-  // One color: magnified splats get a pixel's box low-pass, not the paper's unit one.
-  if (mapper->GetLastMagnifiedLowPassVariance() != 1.0 / 12.0)
+  // One color: splats get a pixel's box low-pass, not the paper's unit one; minified
+  // differential points keep the paper's.
+  if (mapper->GetLastMagnifiedLowPassVariance() != 1.0 / 12.0 ||
+    mapper->GetLastMinifiedLowPassVariance() != (differential ? 1.0 : 1.0 / 12.0))
   {
     std::cerr << "Expected the box low-pass for surfels of one color, got "
-              << mapper->GetLastMagnifiedLowPassVariance() << ".\n";
+              << mapper->GetLastMagnifiedLowPassVariance() << " and "
+              << mapper->GetLastMinifiedLowPassVariance() << ".\n";
     return EXIT_FAILURE;
   }
   return vtkRegressionTestImage(window) == vtkTesting::FAILED ? EXIT_FAILURE : EXIT_SUCCESS;

@@ -46,10 +46,12 @@ int main(int argc, char* argv[])
     return EXIT_FAILURE;
   }
   // Colors from scalars keep the paper's low-pass: a smaller one would let them alias.
-  if (mapper->GetLastMagnifiedLowPassVariance() != 1.0)
+  if (mapper->GetLastMagnifiedLowPassVariance() != 1.0 ||
+    mapper->GetLastMinifiedLowPassVariance() != 1.0)
   {
     std::cerr << "Expected the paper's low-pass for colors from scalars, got "
-              << mapper->GetLastMagnifiedLowPassVariance() << ".\n";
+              << mapper->GetLastMagnifiedLowPassVariance() << " magnified and "
+              << mapper->GetLastMinifiedLowPassVariance() << " minified.\n";
     return EXIT_FAILURE;
   }
   return vtkRegressionTestImage(window) == vtkTesting::FAILED ? EXIT_FAILURE : EXIT_SUCCESS;
