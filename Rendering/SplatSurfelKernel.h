@@ -269,9 +269,9 @@ inline double TruncatedMassScale(double cutoff, double splatCutoff)
  * Builds the kernel of eq. (6) from a projection. With the EWA filter the low-pass term
  * (LowPassVariance: `magnifiedLowPass` at least BoxFilterVariance, `minifiedLowPass` at least
  * UnfilteredMinimumVariance) keeps M invertible even for an edge-on surfel whose J is
- * singular; its amplitude |J| then goes to zero. Its cutoff c is
- * SplatCutoff's (`cutoff` but where `antialiasingCutoff` raises it), its amplitude scaled to
- * the mass it would keep at `cutoff` (TruncatedMassScale). The bounding box of the ellipse
+ * singular; its amplitude |J| then goes to zero. Its cutoff c is SplatCutoff's (`cutoff` but
+ * where `antialiasingCutoff` raises it), its amplitude scaled to the mass it would keep at
+ * `cutoff` (TruncatedMassScale). The bounding box of the ellipse
  * 1/2 x^T M^-1 x = c has half sizes sqrt(2 c M_xx), sqrt(2 c M_yy), with no
  * eigen-decomposition.
  */

@@ -629,16 +629,16 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
     this->Cutoff == 0.0 && this->Primitive == SURFELS && this->Surfels->ColorsFromScalars
       ? 1.0
       : 0.0);
+  // The automatic low-pass of one color is a pixel's box filter, minified surfels included;
+  // differential points, whose rectangles need not overlap, keep the paper's where minified.
+  const bool boxFilter =
+    this->MagnifiedLowPassVariance == 0.0 && !this->Surfels->ColorsFromScalars;
   this->LastMagnifiedLowPassVariance = this->MagnifiedLowPassVariance > 0.0
     ? this->MagnifiedLowPassVariance
-    : this->Surfels->ColorsFromScalars ? 1.0 : splat::BoxFilterVariance;
+    : boxFilter ? splat::BoxFilterVariance : 1.0;
   this->Rasterizer->SetMagnifiedLowPassVariance(this->LastMagnifiedLowPassVariance);
-  // Minified surfels of one color take a pixel's box filter too; differential points, whose
-  // rectangles need not overlap, keep the paper's low-pass.
-  this->LastMinifiedLowPassVariance = this->MagnifiedLowPassVariance == 0.0 &&
-      this->Primitive == SURFELS && !this->Surfels->ColorsFromScalars
-    ? splat::BoxFilterVariance
-    : 1.0;
+  this->LastMinifiedLowPassVariance =
+    boxFilter && this->Primitive == SURFELS ? splat::BoxFilterVariance : 1.0;
   this->Rasterizer->SetMinifiedLowPassVariance(this->LastMinifiedLowPassVariance);
 
   this->Compositor->MoveGraphicsResources(ren, this);

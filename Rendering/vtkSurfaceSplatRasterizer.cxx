@@ -502,7 +502,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   std::vector<std::uint32_t>& splatBands = this->Internal->SplatBands;
   splatBands.resize(count);
   auto bandsOf = [](const ScreenSplat& s)
-  { return static_cast<std::uint32_t>(s.Y0 / BandHeight | (s.Y1 / BandHeight) << 16); };
+  { return static_cast<std::uint32_t>((s.Y0 / BandHeight) | (s.Y1 / BandHeight) << 16); };
   const glm::dmat3 axisToEye(modelToEye);
   const glm::dvec3 eyeTranslation(modelToEye[3]);
   // Minified splats are summed per pixel under the paper's unit low-pass; under a smaller one

@@ -166,10 +166,10 @@ public:
    * splat instead of a kernel over several pixels. Under a MinifiedLowPassVariance below 1
    * they are not summed: each draws its kernel, set up from the same single-precision
    * projection. Default 0.75 (splats up to about 1.2 pixels apart); 0 draws every splat with
-   * its exact kernel. Translucent scenes, differential points
-   * and the other filters always take the exact kernel, and so does a frame where fewer than a
-   * quarter of a sample of the surfels in view are minified (the path's single-precision setup
-   * of every splat would cost more than it saves).
+   * its exact kernel. Translucent scenes, differential points and the other filters always
+   * take the exact kernel, and so does a frame where fewer than a quarter of a sample of the
+   * surfels in view are minified (the path's single-precision setup of every splat would cost
+   * more than it saves).
    */
   vtkSetClampMacro(MinifiedVariance, double, 0.0, 1.0);
   vtkGetMacro(MinifiedVariance, double);
