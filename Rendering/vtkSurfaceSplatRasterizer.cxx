@@ -32,6 +32,10 @@ enum CullReason
 // Rows per band: small enough to balance the threads, large enough that few kernels straddle bands.
 constexpr int BandHeight = 16;
 
+// Widest box, in pixels, whose rows are walked whole: for a few pixels, testing each one's
+// exponent costs less than the square root and roundings of the row's span.
+constexpr int NarrowSplatWidth = 3;
+
 // Surfels per setup chunk: the minified splats are listed chunk by chunk, so that every pixel
 // sums them in input order whatever the number of threads.
 constexpr vtkIdType ChunkSize = 16384;
@@ -803,25 +807,31 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
             const float splatCutoff = s.Cutoff; // a local: the fragment writes may alias s
             const int y0 = std::max(s.Y0, rowBegin);
             const int y1 = std::min(s.Y1, rowEnd);
+            const bool wholeRows = rectangles || s.X1 - s.X0 < NarrowSplatWidth;
             for (int y = y0; y <= y1; ++y)
             {
               const float py = y + 0.5f;
               const float dy = py - s.CenterY;
-              // The row's span inside the ellipse: roots of XX dx^2 + XY dy dx + YY dy^2 = cutoff;
-              // a rectangle's pixels are tested one by one.
-              const float bq = s.ConicXY * dy;
-              const float discriminant =
-                bq * bq - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - splatCutoff);
-              if (!(discriminant > 0.0f) && !rectangles)
+              int xBegin = s.X0;
+              int xEnd = s.X1;
+              if (!wholeRows)
               {
-                continue;
+                // The row's span inside the ellipse: roots of XX dx^2 + XY dy dx + YY dy^2 =
+                // cutoff.
+                const float bq = s.ConicXY * dy;
+                const float discriminant =
+                  bq * bq - 4.0f * s.ConicXX * (s.ConicYY * dy * dy - splatCutoff);
+                if (!(discriminant > 0.0f))
+                {
+                  continue;
+                }
+                const float root = std::sqrt(discriminant);
+                const float inverse = 0.5f / s.ConicXX;
+                xBegin = std::max(
+                  xBegin, static_cast<int>(std::ceil(s.CenterX + (-bq - root) * inverse - 0.5f)));
+                xEnd = std::min(
+                  xEnd, static_cast<int>(std::floor(s.CenterX + (-bq + root) * inverse - 0.5f)));
               }
-              const float root = std::sqrt(std::max(discriminant, 0.0f));
-              const float inverse = 0.5f / s.ConicXX;
-              int xBegin = rectangles ? s.X0 : std::max(
-                s.X0, static_cast<int>(std::ceil(s.CenterX + (-bq - root) * inverse - 0.5f)));
-              int xEnd = rectangles ? s.X1 : std::min(
-                s.X1, static_cast<int>(std::floor(s.CenterX + (-bq + root) * inverse - 0.5f)));
               if (rectangles)
               {
                 d->NarrowRow(py, s.DepthNumerator, s.DepthDenominator, xBegin, xEnd);
@@ -844,7 +854,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
               {
                 if (!rectangles && (!(beta < splatCutoff) || beta < 0.0f))
                 {
-                  continue; // rounding at the span's ends
+                  continue; // outside the ellipse, or rounding at the span's ends
                 }
                 const float z = numerator / denominator;
                 if (!(z >= nearClip && z <= farClip) || (sceneDepths && z > sceneDepths[pixel]))
