@@ -76,8 +76,8 @@ SurfelCoverage::SurfelCoverage(const vtkSurfaceSplatRasterizer::Surfels& surfels
 }
 
 //------------------------------------------------------------------------------
-double SurfelCoverage::UncoveredShare(
-  double cutoff, double referenceCutoff, double coverageThreshold) const
+double SurfelCoverage::UncoveredShare(double cutoff, double referenceCutoff,
+  double coverageThreshold, double referenceThreshold) const
 {
   if (this->LargestAxis == 0.0)
   {
@@ -88,7 +88,7 @@ double SurfelCoverage::UncoveredShare(
   vtkStaticPointLocator* locator = this->Locator;
   const double largestAxis = this->LargestAxis;
   const double reach = std::sqrt(std::max(cutoff, referenceCutoff)) * largestAxis;
-  const double referenceFull = FullCoverageWeight(coverageThreshold, referenceCutoff);
+  const double referenceFull = FullCoverageWeight(referenceThreshold, referenceCutoff);
   const double full = FullCoverageWeight(coverageThreshold, cutoff);
   const std::size_t sampled = std::min(count, SampledSurfels);
   const std::size_t stride = SpreadStride(sampled);

@@ -42,7 +42,18 @@ public:
    * way or off the sample's tangent plane by more than their size (the other side of a thin
    * part) do not count. 0 for sets without finite positive axes.
    */
-  double UncoveredShare(double cutoff, double referenceCutoff, double coverageThreshold) const;
+  double UncoveredShare(double cutoff, double referenceCutoff, double coverageThreshold) const
+  {
+    return this->UncoveredShare(cutoff, referenceCutoff, coverageThreshold, coverageThreshold);
+  }
+
+  /**
+   * As above, the reference covering at its own threshold tau: whether `cutoff` still covers
+   * the surface that the reference finds at `referenceThreshold` when full coverage takes
+   * `coverageThreshold`.
+   */
+  double UncoveredShare(double cutoff, double referenceCutoff, double coverageThreshold,
+    double referenceThreshold) const;
 
 private:
   const vtkSurfaceSplatRasterizer::Surfels Surfels;

@@ -153,6 +153,17 @@ struct ResamplingKernel
   }
 };
 
+/// The paper's full-coverage weight tau for c = 1 (paper 000, section 7).
+constexpr double PaperCoverageThreshold = 0.4;
+
+/**
+ * The full-coverage weight tau for splats under a pixel's box filter, where their surfels
+ * cover their surface at it. A silhouette's summed weight then falls from the surface's to none
+ * within about a pixel, and a pixel counts as fully covered once it has tau of it: the paper's
+ * 0.4 draws pixels half covered as covered, widening silhouettes by part of a pixel.
+ */
+constexpr double BoxFilterCoverageThreshold = 0.8;
+
 /**
  * The summed kernel weight above which a pixel counts as fully covered at a cutoff: tau is the
  * paper's threshold for c = 1; other cutoffs keep a different share 1 - e^-c of each kernel's

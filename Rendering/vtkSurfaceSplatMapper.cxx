@@ -63,10 +63,11 @@ struct vtkSurfaceSplatMapper::SurfelArrays
   vtkNew<vtkSurfelHierarchy> Hierarchy;
   vtkTimeStamp HierarchyTime;
 
-  // The automatic cutoff (vtkSurfaceSplatMapper::ChooseCutoff), for the coverage threshold it
-  // was chosen with.
+  // The automatic cutoff (vtkSurfaceSplatMapper::ChooseCoverage), for the coverage threshold
+  // it was chosen with, and whether it covers at the box filter's threshold too.
   double AutomaticCutoff = 0.0;
   double AutomaticThreshold = 0.0;
+  bool CoversAtBoxFilterThreshold = false;
   vtkTimeStamp AutomaticTime;
 
   const vtkSurfelHierarchy* UpdateHierarchy()
@@ -225,7 +226,7 @@ void vtkSurfaceSplatMapper::SetMagnifiedLowPassVariance(double variance)
 }
 
 //------------------------------------------------------------------------------
-double vtkSurfaceSplatMapper::ChooseCutoff()
+void vtkSurfaceSplatMapper::ChooseCoverage(bool boxFilter)
 {
   constexpr double Paper = 1.0;
   constexpr double Widest = 4.0;
@@ -236,16 +237,15 @@ double vtkSurfaceSplatMapper::ChooseCutoff()
   // The share of the surface a cutoff may leave uncovered: holes in fewer samples are at the
   // surface's boundary or too small to see.
   constexpr double AcceptedHoles = 0.01;
-  if (this->Cutoff > 0.0)
+  const double tau =
+    this->CoverageThreshold > 0.0 ? this->CoverageThreshold : splat::PaperCoverageThreshold;
+  this->LastCoverageThreshold = tau;
+  if (this->Cutoff > 0.0 || this->Primitive != SURFELS)
   {
-    return this->Cutoff;
-  }
-  if (this->Primitive != SURFELS)
-  {
-    return Paper;
+    this->LastCutoff = this->Cutoff > 0.0 ? this->Cutoff : Paper;
+    return;
   }
   SurfelArrays& surfels = *this->Surfels;
-  const double tau = this->Rasterizer->GetCoverageThreshold();
   if (surfels.AutomaticTime < surfels.BuildTime || surfels.AutomaticThreshold != tau)
   {
     const splat::SurfelCoverage coverage(surfels.View());
@@ -258,10 +258,19 @@ double vtkSurfaceSplatMapper::ChooseCutoff()
         break;
       }
     }
+    // What the cutoff covers at tau, still covered at the box filter's threshold.
+    const double cutoff = surfels.AutomaticCutoff;
+    surfels.CoversAtBoxFilterThreshold =
+      coverage.UncoveredShare(cutoff, cutoff, splat::BoxFilterCoverageThreshold, tau) <=
+      AcceptedHoles;
     surfels.AutomaticThreshold = tau;
     surfels.AutomaticTime.Modified();
   }
-  return surfels.AutomaticCutoff;
+  this->LastCutoff = surfels.AutomaticCutoff;
+  if (this->CoverageThreshold == 0.0 && boxFilter && surfels.CoversAtBoxFilterThreshold)
+  {
+    this->LastCoverageThreshold = splat::BoxFilterCoverageThreshold;
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -326,22 +335,6 @@ void vtkSurfaceSplatMapper::SetEdgeAntialiasing(bool antialiasing)
 bool vtkSurfaceSplatMapper::GetEdgeAntialiasing()
 {
   return this->Rasterizer->GetEdgeAntialiasing();
-}
-
-//------------------------------------------------------------------------------
-void vtkSurfaceSplatMapper::SetCoverageThreshold(double tau)
-{
-  if (tau != this->Rasterizer->GetCoverageThreshold())
-  {
-    this->Rasterizer->SetCoverageThreshold(tau);
-    this->Modified();
-  }
-}
-
-//------------------------------------------------------------------------------
-double vtkSurfaceSplatMapper::GetCoverageThreshold()
-{
-  return this->Rasterizer->GetCoverageThreshold();
 }
 
 //------------------------------------------------------------------------------
@@ -622,17 +615,18 @@ void vtkSurfaceSplatMapper::RenderPiece(vtkRenderer* ren, vtkActor* actor)
       : static_cast<splat::KernelFilter>(this->FilterMode));
   this->Rasterizer->SetBackfaceCulling(property->GetBackfaceCulling());
 
-  this->LastCutoff = this->ChooseCutoff();
+  // The automatic low-pass of one color is a pixel's box filter, minified surfels included;
+  // differential points, whose rectangles need not overlap, keep the paper's where minified.
+  const bool boxFilter =
+    this->MagnifiedLowPassVariance == 0.0 && !this->Surfels->ColorsFromScalars;
+  this->ChooseCoverage(boxFilter);
   this->Rasterizer->SetCutoff(this->LastCutoff);
+  this->Rasterizer->SetCoverageThreshold(this->LastCoverageThreshold);
   // Colors that change from splat to splat keep the paper's cutoff where the low-pass matters.
   this->Rasterizer->SetAntialiasingCutoff(
     this->Cutoff == 0.0 && this->Primitive == SURFELS && this->Surfels->ColorsFromScalars
       ? 1.0
       : 0.0);
-  // The automatic low-pass of one color is a pixel's box filter, minified surfels included;
-  // differential points, whose rectangles need not overlap, keep the paper's where minified.
-  const bool boxFilter =
-    this->MagnifiedLowPassVariance == 0.0 && !this->Surfels->ColorsFromScalars;
   this->LastMagnifiedLowPassVariance = this->MagnifiedLowPassVariance > 0.0
     ? this->MagnifiedLowPassVariance
     : boxFilter ? splat::BoxFilterVariance : 1.0;
@@ -811,7 +805,8 @@ void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "NumberOfLayers: " << this->Rasterizer->GetNumberOfLayers() << "\n";
   os << indent << "EdgeAntialiasing: " << this->Rasterizer->GetEdgeAntialiasing() << "\n";
-  os << indent << "CoverageThreshold: " << this->Rasterizer->GetCoverageThreshold() << "\n";
+  os << indent << "CoverageThreshold: " << this->CoverageThreshold << "\n";
+  os << indent << "LastCoverageThreshold: " << this->LastCoverageThreshold << "\n";
   os << indent << "TangentAxis0ArrayName: "
      << (this->TangentAxis0ArrayName ? this->TangentAxis0ArrayName : "(none)") << "\n";
   os << indent << "TangentAxis1ArrayName: "

@@ -312,7 +312,7 @@ protected:
   double DepthThreshold = 1.0;
   int NumberOfLayers = 3;
   bool EdgeAntialiasing = true;
-  double CoverageThreshold = 0.4;
+  double CoverageThreshold = splat::PaperCoverageThreshold;
   splat::KernelFilter Filter = splat::KernelFilter::EWA;
   bool BackfaceCulling = false;
 

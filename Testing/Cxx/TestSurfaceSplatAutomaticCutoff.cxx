@@ -15,6 +15,11 @@
 //   at 0.6), not the one of 0.6, while GetLastCutoff() says 0.6;
 // - differential points keep 1; SetCutoff(2) and SetCutoffToPaper() are used as set; a
 //   negative cutoff is refused with an error and changes nothing.
+// The automatic coverage threshold goes with it (GetLastCoverageThreshold()): 0.8 for surfels
+// of one color that cover their surface at it with the chosen cutoff (the sphere's vertices,
+// the wider grid), the paper's 0.4 for the others (the scattered points and the tight grid,
+// whose summed weights fall short of 0.8; colors; differential points; a cutoff set by hand),
+// and a threshold set by hand as it is.
 #include "SplatTestUtilities.h"
 #include "vtkDifferentialPointGenerator.h"
 #include "vtkSurfaceSplatMapper.h"
@@ -37,6 +42,7 @@ struct Drawn
   double Cutoff;
   std::vector<double> Pixels;
   double MinifiedLowPass;
+  double CoverageThreshold;
 };
 
 // Draws `surfels` with a CPU mapper configured by `apply`: the cutoff it used and its image.
@@ -61,23 +67,32 @@ Drawn Draw(vtkPolyData* surfels, const std::function<void(vtkSurfaceSplatMapper*
   renderer->ResetCameraClippingRange();
   window->Render();
   return { mapper->GetLastCutoff(), splattest::ToRGB(splattest::Capture(window)),
-    mapper->GetLastMinifiedLowPassVariance() };
+    mapper->GetLastMinifiedLowPassVariance(), mapper->GetLastCoverageThreshold() };
 }
 
-// The default's cutoff on `surfels` must be `expected`, with the image of that cutoff set by
-// hand, and its minified splats (of one color) a pixel's box filter.
-void CheckAutomatic(vtkPolyData* surfels, double expected, const std::string& what)
+// The default's cutoff and coverage threshold on `surfels` must be `expected` and
+// `expectedTau`, with the image of both set by hand, and its minified splats (of one color) a
+// pixel's box filter.
+void CheckAutomatic(
+  vtkPolyData* surfels, double expected, double expectedTau, const std::string& what)
 {
   const Drawn automatic = Draw(surfels, nullptr);
-  std::printf("%s: automatic cutoff %g, minified low-pass %g\n", what.c_str(), automatic.Cutoff,
-    automatic.MinifiedLowPass);
+  std::printf("%s: automatic cutoff %g, coverage threshold %g, minified low-pass %g\n",
+    what.c_str(), automatic.Cutoff, automatic.CoverageThreshold, automatic.MinifiedLowPass);
   splattest::Check(automatic.Cutoff == expected,
     what + " draws with cutoff " + std::to_string(expected));
+  splattest::Check(automatic.CoverageThreshold == expectedTau,
+    what + " draws with coverage threshold " + std::to_string(expectedTau));
   splattest::Check(automatic.MinifiedLowPass == 1.0 / 12.0,
     what + ": minified splats take the box filter");
-  const Drawn byHand = Draw(surfels, [&](vtkSurfaceSplatMapper* m) { m->SetCutoff(expected); });
+  const Drawn byHand = Draw(surfels,
+    [&](vtkSurfaceSplatMapper* m)
+    {
+      m->SetCutoff(expected);
+      m->SetCoverageThreshold(expectedTau);
+    });
   splattest::Check(splattest::LargestDifference(automatic.Pixels, byHand.Pixels) == 0.0,
-    what + ": the image is the one of its cutoff set by hand");
+    what + ": the image is the one of its cutoff and threshold set by hand");
 }
 
 vtkSmartPointer<vtkPolyData> Surfels(vtkPolyData* input)
@@ -110,7 +125,7 @@ int main(int, char*[])
   sphere->SetThetaResolution(80);
   sphere->SetPhiResolution(40);
   sphere->Update();
-  CheckAutomatic(Surfels(sphere->GetOutput()), 0.5, "surfels on a sphere's vertices");
+  CheckAutomatic(Surfels(sphere->GetOutput()), 0.5, 0.8, "surfels on a sphere's vertices");
 
   vtkNew<vtkPolyDataPointSampler> sampler;
   sampler->SetInputConnection(sphere->GetOutputPort());
@@ -121,16 +136,18 @@ int main(int, char*[])
   sampler->Update();
   vtkNew<vtkPolyData> cloud;
   cloud->SetPoints(sampler->GetOutput()->GetPoints());
-  CheckAutomatic(Surfels(cloud), 3.0, "points scattered over the sphere");
+  CheckAutomatic(Surfels(cloud), 3.0, 0.4, "points scattered over the sphere");
 
-  CheckAutomatic(Grid(0.05), 0.6, "a grid with the radius of its spacing");
-  CheckAutomatic(Grid(0.075), 0.5, "a grid with 1.5 times the radius of its spacing");
+  CheckAutomatic(Grid(0.05), 0.6, 0.4, "a grid with the radius of its spacing");
+  CheckAutomatic(Grid(0.075), 0.5, 0.8, "a grid with 1.5 times the radius of its spacing");
 
   vtkSmartPointer<vtkPolyData> colored = Grid(0.05);
   const double orange[3] = { 0.9, 0.6, 0.2 };
   splattest::Paint(colored, orange, 1.0);
   const Drawn automatic = Draw(colored, nullptr);
   splattest::Check(automatic.Cutoff == 0.6, "a colored grid's cutoff is 0.6");
+  splattest::Check(
+    automatic.CoverageThreshold == 0.4, "a colored grid keeps the paper's coverage threshold");
   const double fromPaper = splattest::LargestDifference(automatic.Pixels,
     Draw(colored, [](vtkSurfaceSplatMapper* m) { m->SetCutoffToPaper(); }).Pixels);
   const double fromSnug = splattest::LargestDifference(
@@ -141,9 +158,17 @@ int main(int, char*[])
     "a colored grid's small splats draw with the paper's cutoff");
 
   vtkSmartPointer<vtkPolyData> surfels = Surfels(sphere->GetOutput());
-  splattest::Check(Draw(surfels, [](vtkSurfaceSplatMapper* m) { m->SetCutoff(2.0); }).Cutoff ==
-      2.0,
-    "a cutoff set by hand is used as set");
+  const Drawn setCutoff = Draw(surfels, [](vtkSurfaceSplatMapper* m) { m->SetCutoff(2.0); });
+  splattest::Check(setCutoff.Cutoff == 2.0 && setCutoff.CoverageThreshold == 0.4,
+    "a cutoff set by hand is used as set, with the paper's coverage threshold");
+  splattest::Check(
+    Draw(surfels, [](vtkSurfaceSplatMapper* m) { m->SetCoverageThreshold(0.3); })
+        .CoverageThreshold == 0.3,
+    "a coverage threshold set by hand is used as set");
+  splattest::Check(
+    Draw(surfels, [](vtkSurfaceSplatMapper* m) { m->SetCoverageThresholdToPaper(); })
+        .CoverageThreshold == 0.4,
+    "SetCoverageThresholdToPaper draws with 0.4");
   splattest::Check(
     Draw(surfels, [](vtkSurfaceSplatMapper* m) { m->SetCutoffToPaper(); }).Cutoff == 1.0,
     "SetCutoffToPaper draws with cutoff 1");
@@ -151,10 +176,10 @@ int main(int, char*[])
   differential->SetInputConnection(sphere->GetOutputPort());
   differential->SimplifyOff();
   differential->Update();
-  splattest::Check(Draw(differential->GetOutput(),
-                     [](vtkSurfaceSplatMapper* m) { m->SetPrimitiveToDifferentialPoints(); })
-                       .Cutoff == 1.0,
-    "differential points keep the paper's cutoff");
+  const Drawn points = Draw(differential->GetOutput(),
+    [](vtkSurfaceSplatMapper* m) { m->SetPrimitiveToDifferentialPoints(); });
+  splattest::Check(points.Cutoff == 1.0 && points.CoverageThreshold == 0.4,
+    "differential points keep the paper's cutoff and coverage threshold");
 
   vtkNew<vtkSurfaceSplatMapper> mapper;
   mapper->SetCutoff(2.0);

@@ -113,7 +113,7 @@ def test_mapper(servermanager):
          "LevelOfDetail": 1, "Radius": 1.0,
          "DepthThreshold": 1.0,
          "FilterMode": 0,
-         "Backend": 0, "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.4,
+         "Backend": 0, "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.0,
          "RadiusArrayName": "Radius", "OpacityArrayName": "Opacity",
          "TangentAxis0ArrayName": "TangentAxis0",
          "TangentAxis1ArrayName": "TangentAxis1", "Primitive": 0,

@@ -29,7 +29,7 @@ MAPPER_SETTINGS = [
     ("SurfaceSplatFilterMode", "EWA", "Circular", "FilterModeInfo", 1),
     ("SurfaceSplatNumberOfLayers", 3, 5, "NumberOfLayersInfo", 5),
     ("SurfaceSplatEdgeAntialiasing", 1, 0, "EdgeAntialiasingInfo", 0),
-    ("SurfaceSplatCoverageThreshold", 0.4, 0.6, "CoverageThresholdInfo", 0.6),
+    ("SurfaceSplatCoverageThreshold", 0.0, 0.6, "CoverageThresholdInfo", 0.6),
     ("SurfaceSplatRadius", 1.0, 0.25, "RadiusInfo", 0.25),
     ("SurfaceSplatOpacityArrayName", "Opacity", "Alpha", "OpacityArrayNameInfo", "Alpha"),
     # Set on the representation, which passes them to the mapper.
