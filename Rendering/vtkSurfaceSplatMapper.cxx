@@ -64,9 +64,11 @@ struct vtkSurfaceSplatMapper::SurfelArrays
   vtkTimeStamp HierarchyTime;
 
   // The automatic cutoff (vtkSurfaceSplatMapper::ChooseCoverage), for the coverage threshold
-  // it was chosen with, and whether it covers at the box filter's threshold too.
+  // it was chosen with, and whether it covers at the box filter's threshold too (tested only
+  // for frames that could use it).
   double AutomaticCutoff = 0.0;
   double AutomaticThreshold = 0.0;
+  bool BoxFilterThresholdTested = false;
   bool CoversAtBoxFilterThreshold = false;
   vtkTimeStamp AutomaticTime;
 
@@ -246,7 +248,9 @@ void vtkSurfaceSplatMapper::ChooseCoverage(bool boxFilter)
     return;
   }
   SurfelArrays& surfels = *this->Surfels;
-  if (surfels.AutomaticTime < surfels.BuildTime || surfels.AutomaticThreshold != tau)
+  const bool mayRaise = this->CoverageThreshold == 0.0 && boxFilter;
+  if (surfels.AutomaticTime < surfels.BuildTime || surfels.AutomaticThreshold != tau ||
+    (mayRaise && !surfels.BoxFilterThresholdTested))
   {
     const splat::SurfelCoverage coverage(surfels.View());
     surfels.AutomaticCutoff = Widest;
@@ -260,14 +264,15 @@ void vtkSurfaceSplatMapper::ChooseCoverage(bool boxFilter)
     }
     // What the cutoff covers at tau, still covered at the box filter's threshold.
     const double cutoff = surfels.AutomaticCutoff;
-    surfels.CoversAtBoxFilterThreshold =
+    surfels.BoxFilterThresholdTested = mayRaise;
+    surfels.CoversAtBoxFilterThreshold = mayRaise &&
       coverage.UncoveredShare(cutoff, cutoff, splat::BoxFilterCoverageThreshold, tau) <=
-      AcceptedHoles;
+        AcceptedHoles;
     surfels.AutomaticThreshold = tau;
     surfels.AutomaticTime.Modified();
   }
   this->LastCutoff = surfels.AutomaticCutoff;
-  if (this->CoverageThreshold == 0.0 && boxFilter && surfels.CoversAtBoxFilterThreshold)
+  if (mayRaise && surfels.CoversAtBoxFilterThreshold)
   {
     this->LastCoverageThreshold = splat::BoxFilterCoverageThreshold;
   }
