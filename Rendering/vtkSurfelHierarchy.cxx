@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
+#include <utility>
 
 vtkStandardNewMacro(vtkSurfelHierarchy);
 
@@ -147,12 +149,13 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
   this->LevelNodes.clear();
   this->LevelOffsets.clear();
   for (std::vector<float>* v : { &this->Normals, &this->Axes0, &this->Axes1, &this->Colors,
-         &this->MassScales, &this->BlockAxes })
+         &this->MassScales, &this->BlockAxes, &this->BlockReaches })
   {
     v->clear();
   }
   this->Positions.clear();
   this->Blocks.clear();
+  this->BlockNodes.clear();
   this->Modified();
   if (n == 0 || n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
   {
@@ -341,6 +344,13 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
   const std::size_t blockCount = blocks.size() - 1;
   this->Blocks.resize(blockCount);
   this->BlockAxes.assign(blockCount * (levels + 1), 0.0f);
+  this->BlockReaches.assign(blockCount * (levels + 1), 0.0f);
+  this->BlockNodes.resize(levels * (blockCount + 1));
+  for (int level = 1; level <= levels; ++level)
+  {
+    this->BlockNodes[level * (blockCount + 1) - 1] =
+      static_cast<std::uint32_t>(this->LevelNodes[level - 1].size() - 1);
+  }
   auto axisLength = [](const float* axis)
   { return std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]); };
   vtkSMPTools::For(0, static_cast<vtkIdType>(blockCount),
@@ -353,6 +363,7 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
         glm::dvec3 high(-std::numeric_limits<double>::infinity());
         glm::dvec3 normals(0.0);
         float* axes = &this->BlockAxes[b * (levels + 1)];
+        float* reaches = &this->BlockReaches[b * (levels + 1)];
         for (std::uint32_t k = blocks[b]; k < blocks[b + 1]; ++k)
         {
           const double* p = sorted.Positions + 3 * k;
@@ -363,7 +374,7 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
           axes[0] = std::max(
             { axes[0], axisLength(sorted.Axes0 + 3 * k), axisLength(sorted.Axes1 + 3 * k) });
         }
-        block.Reach = axes[0];
+        reaches[0] = axes[0];
         block.ConeAxis = glm::length(normals) > 0.0 ? glm::normalize(normals) : glm::dvec3(0.0);
         double cosine = 1.0;
         for (std::uint32_t k = blocks[b]; k < blocks[b + 1]; ++k)
@@ -377,7 +388,10 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
           const std::vector<std::uint32_t>& starts = this->LevelNodes[level - 1];
           const auto first = std::lower_bound(starts.begin(), starts.end() - 1, blocks[b]);
           const auto last = std::lower_bound(starts.begin(), starts.end() - 1, blocks[b + 1]);
+          this->BlockNodes[(level - 1) * (blockCount + 1) + b] =
+            static_cast<std::uint32_t>(first - starts.begin());
           double squares = 0.0;
+          reaches[level] = reaches[0]; // nodes seen at a grazing angle draw their surfels
           for (auto node = first; node != last; ++node)
           {
             const std::size_t out = this->LevelOffsets[level - 1] + (node - starts.begin());
@@ -385,7 +399,7 @@ void vtkSurfelHierarchy::Build(const vtkSurfaceSplatRasterizer::Surfels& surfels
             const double spacing =
               this->MassScales[out] * major * axisLength(&this->Axes1[3 * out]);
             squares += std::max(major * major, spacing);
-            block.Reach = std::max(block.Reach, major);
+            reaches[level] = std::max(reaches[level], static_cast<float>(major));
           }
           axes[level] = static_cast<float>(std::sqrt(squares / (last - first)));
         }
@@ -438,7 +452,6 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
   const bool uniform =
     std::max({ columns.x, columns.y, columns.z }) - std::min({ columns.x, columns.y, columns.z }) <=
     1e-9 * scale;
-  const bool cones = backRegions && uniform;
   const glm::dmat4 eyeToModel = glm::inverse(modelToEye);
   const glm::dvec3 eyeInModel(eyeToModel[3]);
   const glm::dvec3 viewInModel(eyeToModel * glm::dvec4(0.0, 0.0, -1.0, 0.0));
@@ -450,9 +463,16 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
   const glm::dmat3 normalToEye = glm::transpose(glm::inverse(glm::dmat3(modelToEye)));
   const std::vector<std::uint32_t>& blocks = this->LevelNodes.back();
   const vtkIdType blockCount = static_cast<vtkIdType>(blocks.size()) - 1;
+  // The nodes of block b at level `level` (level > 0), as indices into LevelNodes[level - 1].
+  auto nodesOf = [&](vtkIdType b, int level)
+  {
+    const std::uint32_t* first = &this->BlockNodes[(level - 1) * (blockCount + 1) + b];
+    return std::make_pair(first[0], first[1]);
+  };
   // The splats of block b at level `level`, in order, to emit(item, surfels it stands for):
-  // its nodes, but for those seen at a grazing angle, whose surfels are drawn instead.
-  auto visit = [&](vtkIdType b, int level, auto&& emit)
+  // its nodes, but for those seen at a grazing angle, whose surfels are drawn instead. Blocks
+  // whose normal cones keep clear of grazing angles skip the test node by node.
+  auto visit = [&](vtkIdType b, int level, bool grazing, auto&& emit)
   {
     if (level == 0)
     {
@@ -463,24 +483,27 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
       return;
     }
     const std::vector<std::uint32_t>& starts = this->LevelNodes[level - 1];
-    const std::size_t first =
-      std::lower_bound(starts.begin(), starts.end() - 1, blocks[b]) - starts.begin();
-    const std::size_t last =
-      std::lower_bound(starts.begin(), starts.end() - 1, blocks[b + 1]) - starts.begin();
+    const auto range = nodesOf(b, level);
     const std::uint32_t offset = this->LevelOffsets[level - 1];
-    for (std::size_t j = first; j < last; ++j)
+    for (auto j = range.first; j < range.second; ++j)
     {
       const std::size_t node = offset + j;
-      const glm::dvec3 n(
-        this->Normals[3 * node], this->Normals[3 * node + 1], this->Normals[3 * node + 2]);
-      const glm::dvec3 p(
-        this->Positions[3 * node], this->Positions[3 * node + 1], this->Positions[3 * node + 2]);
-      const glm::dvec3 normal = uniform ? n : normalToEye * n;
-      const glm::dvec3 view = uniform ? (perspective ? p - eyeInModel : viewInModel)
-        : (perspective ? glm::dvec3(modelToEye * glm::dvec4(p, 1.0)) : glm::dvec3(0.0, 0.0, -1.0));
-      const double cosine = glm::dot(normal, view);
-      if (cosine * cosine <
-        GrazingCosine * GrazingCosine * glm::dot(normal, normal) * glm::dot(view, view))
+      bool edgeOn = false;
+      if (grazing)
+      {
+        const glm::dvec3 n(
+          this->Normals[3 * node], this->Normals[3 * node + 1], this->Normals[3 * node + 2]);
+        const glm::dvec3 p(this->Positions[3 * node], this->Positions[3 * node + 1],
+          this->Positions[3 * node + 2]);
+        const glm::dvec3 normal = uniform ? n : normalToEye * n;
+        const glm::dvec3 view = uniform ? (perspective ? p - eyeInModel : viewInModel)
+          : (perspective ? glm::dvec3(modelToEye * glm::dvec4(p, 1.0))
+                         : glm::dvec3(0.0, 0.0, -1.0));
+        const double cosine = glm::dot(normal, view);
+        edgeOn = cosine * cosine <
+          GrazingCosine * GrazingCosine * glm::dot(normal, normal) * glm::dot(view, view);
+      }
+      if (edgeOn)
       {
         for (std::uint32_t k = starts[j]; k < starts[j + 1]; ++k)
         {
@@ -493,14 +516,15 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
       }
     }
   };
-  // Whether every normal of block b faces away from every point of its sphere: the angle
-  // between its cone's axis and the view direction to its center, plus the cone's half angle,
-  // plus the angle the sphere subtends, stays below 90 degrees.
-  auto facesAway = [&](const Block& block, const glm::dvec3& center)
+  // The range of angles between the block's normals and the view directions to the points of
+  // its sphere: the angle between its cone's axis and the view direction to its center, widened
+  // by the cone's half angle and the angle the sphere subtends; all angles without a cone.
+  auto viewAngles = [&](const Block& block, const glm::dvec3& center)
   {
-    if (!cones || glm::dot(block.ConeAxis, block.ConeAxis) == 0.0)
+    const std::pair<double, double> all(0.0, vtkMath::Pi());
+    if (!uniform || glm::dot(block.ConeAxis, block.ConeAxis) == 0.0)
     {
-      return false;
+      return all;
     }
     double subtended = 0.0;
     glm::dvec3 view(0.0, 0.0, -1.0);
@@ -510,19 +534,24 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
       const double radius = scale * block.Radius;
       if (!(distance > radius))
       {
-        return false;
+        return all;
       }
       subtended = std::asin(radius / distance);
       view = center / distance;
     }
     const double axis = std::acos(
       std::min(1.0, std::max(-1.0, glm::dot(glm::normalize(normalToEye * block.ConeAxis), view))));
-    return axis + block.ConeAngle + subtended < 0.5 * vtkMath::Pi() - 1e-3;
+    const double spread = block.ConeAngle + subtended + 1e-3;
+    return std::make_pair(axis - spread, axis + spread);
   };
+  const double grazingAngle = std::acos(GrazingCosine);
 
+  // Per block: the level it draws, whether all its normals face away, whether some node may be
+  // seen at a grazing angle, and how many items it emits.
   std::vector<int> chosen(blockCount);
   std::vector<char> away(blockCount);
-  std::vector<vtkIdType> merged(blockCount, 0);
+  std::vector<char> grazing(blockCount);
+  std::vector<std::size_t> counts(blockCount);
   vtkSMPTools::For(0, blockCount,
     [&](vtkIdType begin, vtkIdType end)
     {
@@ -545,63 +574,61 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
           }
         }
         chosen[b] = level;
-        away[b] = facesAway(block, center);
+        const std::pair<double, double> angles = viewAngles(block, center);
+        away[b] = backRegions && angles.second < 0.5 * vtkMath::Pi();
+        grazing[b] = angles.second > grazingAngle && angles.first < vtkMath::Pi() - grazingAngle;
+        std::size_t count = 0;
+        if (level > 0 && !grazing[b])
+        {
+          const auto range = nodesOf(b, level);
+          count = static_cast<std::size_t>(range.second - range.first);
+        }
+        else
+        {
+          visit(b, level, grazing[b], [&](std::uint32_t, std::uint32_t) { ++count; });
+        }
+        counts[b] = count;
       }
     });
-  // A block emits at most one item per surfel: block b's items are written from blocks[b] on,
-  // counted, then moved into order.
-  items.resize(this->SurfelCount);
-  std::vector<std::uint32_t> emitted(blockCount, 0);
+  // The blocks that may face the eye first, then those facing away, each in block order.
+  std::vector<std::size_t> offsets(blockCount);
+  std::size_t total = 0;
+  for (int facingAway = 0; facingAway < 2; ++facingAway)
+  {
+    for (vtkIdType b = 0; b < blockCount; ++b)
+    {
+      if (away[b] == facingAway)
+      {
+        offsets[b] = total;
+        total += counts[b];
+        if (facingAway)
+        {
+          const Block& block = this->Blocks[b];
+          backRegions->push_back({ offsets[b], total, block.Low, block.High,
+            this->BlockReaches[b * levels + chosen[b]] });
+        }
+      }
+    }
+  }
+  items.resize(total);
+  std::vector<vtkIdType> merged(blockCount, 0);
   vtkSMPTools::For(0, blockCount,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType b = begin; b < end; ++b)
       {
-        std::uint32_t* out = items.data() + blocks[b];
-        visit(b, chosen[b],
+        std::uint32_t* out = items.data() + offsets[b];
+        vtkIdType represented = 0;
+        visit(b, chosen[b], grazing[b],
           [&](std::uint32_t item, std::uint32_t surfels)
           {
-            out[emitted[b]++] = item;
-            merged[b] += surfels;
+            *out++ = item;
+            represented += surfels;
           });
+        merged[b] = represented;
       }
     });
-  // The blocks that may face the eye first, then those facing away, each in block order: the
-  // first move only towards the front, in place; the others are set aside first.
-  std::vector<std::uint32_t> awayItems;
-  for (vtkIdType b = 0; b < blockCount; ++b)
-  {
-    if (away[b])
-    {
-      awayItems.insert(awayItems.end(), items.begin() + blocks[b],
-        items.begin() + blocks[b] + emitted[b]);
-    }
-  }
-  std::size_t total = 0;
-  vtkIdType represented = 0;
-  for (vtkIdType b = 0; b < blockCount; ++b)
-  {
-    if (!away[b])
-    {
-      std::copy(items.begin() + blocks[b], items.begin() + blocks[b] + emitted[b],
-        items.begin() + total);
-      total += emitted[b];
-      represented += merged[b];
-    }
-  }
-  std::copy(awayItems.begin(), awayItems.end(), items.begin() + total);
-  for (vtkIdType b = 0; b < blockCount; ++b)
-  {
-    if (away[b])
-    {
-      const Block& block = this->Blocks[b];
-      backRegions->push_back({ total, total + emitted[b], block.Low, block.High, block.Reach });
-      total += emitted[b];
-      represented += merged[b];
-    }
-  }
-  items.resize(total);
-  return represented;
+  return std::accumulate(merged.begin(), merged.end(), vtkIdType(0));
 }
 
 //------------------------------------------------------------------------------

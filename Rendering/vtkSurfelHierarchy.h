@@ -126,22 +126,26 @@ private:
   std::vector<float> Axes1;
   std::vector<float> Colors;
   std::vector<float> MassScales;
-  // A node of the top level: its surfels' bounding box and sphere (of their centers), the
-  // largest axis of its nodes at any level, and the cone of its surfels' normals.
+  // A node of the top level: its surfels' bounding box and sphere (of their centers) and the
+  // cone of its surfels' normals.
   struct Block
   {
     glm::dvec3 Low{ 0.0 };
     glm::dvec3 High{ 0.0 };
     glm::dvec3 Center{ 0.0 };
     double Radius = 0.0;
-    double Reach = 0.0;
     glm::dvec3 ConeAxis{ 0.0 };
     double ConeAngle = 0.0; // radians
   };
   std::vector<Block> Blocks;
   // Per block, per level (0 first): the root mean square of its nodes' larger axis or
-  // spacing, which decides the level a frame draws.
+  // spacing, which decides the level a frame draws; and the largest axis of the splats that
+  // level draws, its nodes' or their surfels', which bounds how far they reach.
   std::vector<float> BlockAxes;
+  std::vector<float> BlockReaches;
+  // Per level above 0, per block and one past the last: the index of the block's first node
+  // among the level's nodes.
+  std::vector<std::uint32_t> BlockNodes;
 };
 
 #endif
