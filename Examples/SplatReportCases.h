@@ -108,7 +108,10 @@ inline std::string DefaultSettingDescription()
               ? Fixed(mapper->GetMagnifiedLowPassVariance(), 2) + " magnified"
               : "automatic (1/12 or 1)")
        << ", " << layers << (layers == 1 ? " layer" : " layers") << ", edge AA "
-       << (mapper->GetEdgeAntialiasing() ? "on" : "off") << ", minified variance "
+       << (mapper->GetEdgeAntialiasing() ? "on" : "off") << ", coverage threshold "
+       << (mapper->GetCoverageThreshold() > 0.0 ? Fixed(mapper->GetCoverageThreshold(), 2)
+                                                : "automatic (0.4 or 0.8)")
+       << ", minified variance "
        << mapper->GetMinifiedVariance() << ", level of detail "
        << (mapper->GetLevelOfDetail() ? "on" : "off") << " (CPU)";
   return text.str();
