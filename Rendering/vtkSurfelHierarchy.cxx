@@ -547,10 +547,11 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
   const double grazingAngle = std::acos(GrazingCosine);
 
   // Per block: the level it draws, whether all its normals face away, whether some node may be
-  // seen at a grazing angle, and how many items it emits.
+  // seen at a grazing angle, whether it may hold a silhouette, and how many items it emits.
   std::vector<int> chosen(blockCount);
   std::vector<char> away(blockCount);
   std::vector<char> grazing(blockCount);
+  std::vector<char> silhouette(blockCount);
   std::vector<std::size_t> counts(blockCount);
   vtkSMPTools::For(0, blockCount,
     [&](vtkIdType begin, vtkIdType end)
@@ -577,6 +578,7 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
         const std::pair<double, double> angles = viewAngles(block, center);
         away[b] = backRegions && angles.second < 0.5 * vtkMath::Pi();
         grazing[b] = angles.second > grazingAngle && angles.first < vtkMath::Pi() - grazingAngle;
+        silhouette[b] = angles.first < 0.5 * vtkMath::Pi() && angles.second > 0.5 * vtkMath::Pi();
         std::size_t count = 0;
         if (level > 0 && !grazing[b])
         {
@@ -611,13 +613,23 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
     }
   }
   items.resize(total);
+  // A block whose normals may be seen both facing the eye and facing away may hold splats on
+  // both sides of a silhouette, at depths closer than their z threshold. A pixel's fragments
+  // take contributions in the order they come, so such a block's splats are drawn front to
+  // back: the front sheet's form the fragment, and the back sheet's join it or fall behind it
+  // as behind any opaque surface. (In Morton order, back splats that came first took the
+  // fragment, whose filtered normal then turned edge-on and was shaded dark.)
+  const glm::dvec4 depthRow(-modelToEye[0][2], -modelToEye[1][2], -modelToEye[2][2],
+    -modelToEye[3][2]);
   std::vector<vtkIdType> merged(blockCount, 0);
   vtkSMPTools::For(0, blockCount,
     [&](vtkIdType begin, vtkIdType end)
     {
+      std::vector<std::pair<double, std::uint32_t>> byDepth;
       for (vtkIdType b = begin; b < end; ++b)
       {
-        std::uint32_t* out = items.data() + offsets[b];
+        std::uint32_t* const first = items.data() + offsets[b];
+        std::uint32_t* out = first;
         vtkIdType represented = 0;
         visit(b, chosen[b], grazing[b],
           [&](std::uint32_t item, std::uint32_t surfels)
@@ -626,6 +638,18 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
             represented += surfels;
           });
         merged[b] = represented;
+        if (silhouette[b])
+        {
+          byDepth.clear();
+          for (const std::uint32_t* item = first; item != out; ++item)
+          {
+            const double* p = &this->Positions[3 * *item];
+            byDepth.emplace_back(glm::dot(depthRow, glm::dvec4(p[0], p[1], p[2], 1.0)), *item);
+          }
+          std::sort(byDepth.begin(), byDepth.end());
+          std::transform(byDepth.begin(), byDepth.end(), first,
+            [](const std::pair<double, std::uint32_t>& entry) { return entry.second; });
+        }
       }
     });
   return std::accumulate(merged.begin(), merged.end(), vtkIdType(0));

@@ -24,7 +24,9 @@
  * node a run of consecutive sorted surfels and every level's nodes sorted the same way. The
  * nodes of the top level are blocks: each holds its nodes of every level contiguously. Per
  * frame, Select() picks for each block the coarsest level whose splats are all minified at the
- * block's nearest depth, and lists the splats to draw, block by block, in that order.
+ * block's nearest depth, and lists the splats to draw, block by block, in that order; a block
+ * that may hold a silhouette lists its splats front to back, so that the front sheet's splats
+ * form the rim's fragments before the back sheet's come.
  *
  * @sa vtkSurfaceSplatRasterizer vtkSurfaceSplatMapper
  */

@@ -256,6 +256,52 @@ TEST(MinifiedSplats, BoxFilteredSplatsMatchTheExactKernels)
   }
 }
 
+// Where a block of the hierarchy may hold a silhouette, its splats are listed front to back: a
+// pixel's fragments take contributions in the order they come, and back splats that came first
+// took the rim's fragments, turning their filtered normals edge-on (dark dots along the
+// silhouette). Along the list, consecutive splats near the silhouette then come at increasing
+// depths but where one block ends (99.5 %); in Morton order, 77 % did.
+TEST(MinifiedSplats, HierarchyListsSilhouettesFrontToBack)
+{
+  const SurfelGrid sphere = SurfelSphere(400000, 0.3, glm::dvec3(0.0));
+  const double distance = 1.8;
+  vtkNew<vtkSurfelHierarchy> hierarchy;
+  hierarchy->Build(sphere.View());
+  std::vector<std::uint32_t> items;
+  std::vector<vtkSurfelHierarchy::BackRegion> backRegions;
+  ASSERT_GT(hierarchy->Select(FrontoParallelCamera(distance, Size), 0.75, items, backRegions), 0);
+  const vtkSurfaceSplatRasterizer::Surfels nodes = hierarchy->GetNodes();
+  const glm::dvec3 eye(0.0, 0.0, distance);
+  // The eye depth of a splat within 5 degrees of the silhouette, or a negative number.
+  auto silhouetteDepth = [&](std::uint32_t item)
+  {
+    const glm::dvec3 p(nodes.Positions[3 * item], nodes.Positions[3 * item + 1],
+      nodes.Positions[3 * item + 2]);
+    const glm::dvec3 n(
+      nodes.Normals[3 * item], nodes.Normals[3 * item + 1], nodes.Normals[3 * item + 2]);
+    const glm::dvec3 view = p - eye;
+    const double cosine = glm::dot(n, view) / (glm::length(n) * glm::length(view));
+    return std::abs(cosine) < std::sin(glm::radians(5.0)) ? distance - p.z : -1.0;
+  };
+  std::size_t pairs = 0;
+  std::size_t ordered = 0;
+  for (std::size_t k = 1; k < items.size(); ++k)
+  {
+    const double previous = silhouetteDepth(items[k - 1]);
+    const double next = silhouetteDepth(items[k]);
+    if (previous >= 0.0 && next >= 0.0)
+    {
+      ++pairs;
+      ordered += next >= previous;
+    }
+  }
+  std::printf("sphere, level of detail: %zu of %zu consecutive splats near the silhouette "
+              "front to back\n",
+    ordered, pairs);
+  EXPECT_GT(pairs, 1000);
+  EXPECT_GT(ordered, 0.95 * pairs);
+}
+
 // The same sphere in front of a plane of minified splats: where its silhouette crosses the
 // plane, pixels blend the two surfaces as the exact kernels do.
 TEST(MinifiedSplats, SilhouetteAgainstAnotherSurfaceStaysAntialiased)
