@@ -162,8 +162,9 @@ public:
    * surface's shading and silhouettes against the supersampled mesh: RMSE 0.0165 against
    * 0.0184 on the bunny seen whole, 0.0322 against 0.0340 on the armadillo, no slower. On the
    * 1 M-surfel sphere seen whole, about 17 surfels to a pixel, it spreads the silhouette over
-   * three pixels: 0.0029 summed per pixel under it against 0.0015 at 1/12, in about a fifth
-   * more time. No low-pass at all (FilterMode UNFILTERED) reaches 0.0009 there, with
+   * three pixels: 0.0029 summed per pixel under it against 0.0009 at 1/12 (the level of
+   * detail drawing its silhouettes front to back, see vtkSurfelHierarchy), in about a fifth
+   * more time. No low-pass at all (FilterMode UNFILTERED) reaches 0.0009 too, with
    * silhouettes that are not antialiased. On the checkerboard's colors 1/12 would alias
    * (0.1213 against 0.0834). GetLastMagnifiedLowPassVariance() and
    * GetLastMinifiedLowPassVariance() tell what the last render used.

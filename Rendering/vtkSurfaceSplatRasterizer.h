@@ -149,8 +149,9 @@ public:
    * its own kernel, which then reaches only the pixel centers next to it. Splats of one color
    * have no colors to alias: splat::BoxFilterVariance, a pixel's own footprint, keeps their
    * silhouettes antialiased without spreading them over the neighbors (splat_report's 1
-   * M-surfel sphere: RMSE 0.0015 against 0.0029 summed). 0 samples the surface they
-   * reconstruct at the pixel centers (0.0009 there, and silhouettes without partial coverage).
+   * M-surfel sphere: RMSE 0.0009 against 0.0029 summed). 0 samples the surface they
+   * reconstruct at the pixel centers (0.0009 there too, and silhouettes without partial
+   * coverage).
    */
   vtkSetClampMacro(MinifiedLowPassVariance, double, 0.0, 1.0);
   vtkGetMacro(MinifiedLowPassVariance, double);
