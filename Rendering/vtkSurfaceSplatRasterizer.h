@@ -299,6 +299,10 @@ protected:
 
   void Splat(const Surfels& surfels, const Camera& camera, const std::vector<splat::Light>& lights,
     const splat::Material& material);
+  /// Raises to full coverage the dips that merged nodes leave in the summed weight of a
+  /// surface's interior, before regions facing away are tested (RegionHidden). Returns how
+  /// many pixels it raised.
+  vtkIdType CloseCoverageDips();
   /// Whether the fragments drawn so far hide a region of back-facing splats: splat centers in
   /// a box in model coordinates, axes up to `reach` long.
   bool RegionHidden(
