@@ -122,6 +122,13 @@ inline float DepthOf(const SurfaceFragment& f)
 /// alone, edge antialiasing draws it with at most that alpha.
 constexpr float NegligibleCoverage = 0.02f;
 
+/// A coverage dip, raised to full coverage before the resolve (the CPU rasterizer's
+/// CloseCoverageDips, the OpenGL resolve's first layer): an opaque front surface covered at
+/// least DipCoverage of full coverage but not fully, whose eight neighbors hold the same opaque
+/// surface, within DipDepthPixels pixel widths in depth, covered at least as much.
+constexpr float DipCoverage = 0.25f;
+constexpr float DipDepthPixels = 4.0f;
+
 inline float WeightOf(const SurfaceFragment& f)
 {
   return f.Weight;

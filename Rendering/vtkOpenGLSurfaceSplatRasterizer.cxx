@@ -2,6 +2,7 @@
 #include "vtkOpenGLSurfaceSplatRasterizer.h"
 
 #include "SplatOpenGLUtilities.h"
+#include "SplatSurfaceFragment.h"
 #include "vtkHardwareSelector.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
@@ -187,7 +188,7 @@ struct vtkOpenGLSurfaceSplatRasterizer::Internals
     vtkSurfaceSplatRasterizer* settings, bool approximateFilter, bool cullBackFaces);
   void ResolveLayer(vtkOpenGLRenderWindow* window, const vtkSurfaceSplatRasterizer::Camera& camera,
     const std::vector<splat::Light>& lights, const splat::Material& material,
-    vtkSurfaceSplatRasterizer* settings, int layer);
+    vtkSurfaceSplatRasterizer* settings, int layer, bool translucent);
   void Draw() { glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, this->Count); }
 };
 
@@ -534,7 +535,7 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
     // Pass 3: normalize, shade, and blend under the layers in front (the first one also
     // writes its depth).
     VTK_SCOPED_RENDER_EVENT2("resolve, layer " << layer, timer, resolveEvent);
-    internal.ResolveLayer(window, camera, lights, material, settings, layer);
+    internal.ResolveLayer(window, camera, lights, material, settings, layer, translucent);
     resolveEvent.Stop();
     this->PeeledLayers = layer + 1;
   }
@@ -548,7 +549,8 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
 //------------------------------------------------------------------------------
 void vtkOpenGLSurfaceSplatRasterizer::Internals::ResolveLayer(vtkOpenGLRenderWindow* window,
   const vtkSurfaceSplatRasterizer::Camera& camera, const std::vector<splat::Light>& lights,
-  const splat::Material& material, vtkSurfaceSplatRasterizer* settings, int layer)
+  const splat::Material& material, vtkSurfaceSplatRasterizer* settings, int layer,
+  bool translucent)
 {
   static const std::string resolveSource = splat::WithLighting(vtkSurfaceSplatResolveFS);
   vtkShaderProgram* program = splat::ReadyQuad(this->Resolve, window, resolveSource.c_str());
@@ -575,6 +577,11 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::ResolveLayer(vtkOpenGLRenderWin
   this->SetViewUniforms(program, camera);
   program->SetUniformi("edgeAntialiasing", settings->GetEdgeAntialiasing());
   program->SetUniformf("fullCoverage", settings->FullCoverageWeight());
+  program->SetUniformi("closeDips", layer == 0 && !translucent);
+  program->SetUniformf("dipCoverage", splat::DipCoverage);
+  program->SetUniformf("dipTolerance",
+    static_cast<float>(splat::DipDepthPixels * 2.0 /
+      (std::abs(camera.EyeToClip[1][1]) * camera.Viewport.y)));
   splat::SetLightingUniforms(program, lights, material, camera.EyeToClip);
 
   vtkTextureObject* inputs[3] = { this->WeightedColor, this->WeightedNormal, this->WeightedDepth };

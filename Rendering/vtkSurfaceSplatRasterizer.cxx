@@ -943,6 +943,10 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   }
   std::fill(reasons.begin() + drawn, reasons.begin() + count, Hidden);
   drawRange(front, drawn);
+  if (!translucent && this->EdgeAntialiasing)
+  {
+    this->CloseCoverageDips();
+  }
 
   vtkIdType culled[6] = { 0, 0, 0, 0, 0, 0 };
   for (vtkIdType i = 0; i < count; ++i)
@@ -960,17 +964,16 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
 //------------------------------------------------------------------------------
 vtkIdType vtkSurfaceSplatRasterizer::CloseCoverageDips()
 {
-  // Merged nodes are few per pixel, narrow for their mass and cut off at the surfels' cutoff, so
-  // their summed weight ripples: on a 1 M-surfel sphere about 2.5 % of its interior pixels fall
-  // below full coverage, down to a quarter of it, in dips of one or two pixels. Drawn so, the
-  // surface behind shows through them, and one such pixel keeps a whole region facing away from
-  // being found hidden. A dip is a pixel whose opaque front surface is covered at least
-  // DipCoverage but not fully, where all eight neighbors have the same surface (opaque, within
-  // DipDepthPixels pixel widths in depth: inclined up to 76 degrees) covered at least as much:
-  // a local minimum inside a surface, which a silhouette's edge never is (the pixel beyond it
-  // is covered less). Raised in passes, so that a dip of two pixels closes from its lower one.
-  constexpr float DipCoverage = 0.25f;
-  constexpr float DipDepthPixels = 4.0f;
+  // Inside a surface, the summed weight dips below full coverage where few splats overlap:
+  // merged nodes (few per pixel and narrow for their mass; about 2.5 % of a 1 M-surfel sphere's
+  // interior pixels, down to a quarter of full coverage, in dips of one or two pixels), surfels
+  // at a tight cutoff, scattered points. Drawn so, edge antialiasing lets the surface behind or
+  // the background show through them, and one such pixel keeps a whole region facing away from
+  // being found hidden. A dip (splat::DipCoverage) is a local minimum of coverage inside a
+  // surface (depths within four pixel widths: inclined up to 76 degrees), which a silhouette's
+  // edge never is: the pixel beyond it is covered less. Raised in passes, so that a dip of two pixels closes from its lower one.
+  using splat::DipCoverage;
+  using splat::DipDepthPixels;
   constexpr int DipPasses = 3;
   const Frame& frame = this->CurrentFrame;
   const int width = frame.View.Viewport.x;

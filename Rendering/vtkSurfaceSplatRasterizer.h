@@ -299,9 +299,9 @@ protected:
 
   void Splat(const Surfels& surfels, const Camera& camera, const std::vector<splat::Light>& lights,
     const splat::Material& material);
-  /// Raises to full coverage the dips that merged nodes leave in the summed weight of a
-  /// surface's interior, before regions facing away are tested (RegionHidden). Returns how
-  /// many pixels it raised.
+  /// Raises to full coverage the dips in the summed weight of opaque surfaces' interiors: before
+  /// regions facing away are tested (RegionHidden), and before the fragments are resolved.
+  /// Returns how many pixels it raised.
   vtkIdType CloseCoverageDips();
   /// Whether the fragments drawn so far hide a region of back-facing splats: splat centers in
   /// a box in model coordinates, axes up to `reach` long.

@@ -16,10 +16,47 @@ uniform vec2 depthProjection;
 uniform vec2 depthProjectionW;
 uniform int edgeAntialiasing;
 uniform float fullCoverage;
+// Raise coverage dips of the front layer of opaque splats (SplatSurfaceFragment.h's
+// DipCoverage): the lowest share of full coverage, and the depth tolerance per unit eye depth
+// (perspective) or in eye units (parallel).
+uniform int closeDips;
+uniform float dipCoverage;
+uniform float dipTolerance;
+uniform int perspective;
 
 //VTK::SplatLighting::Dec
 
 //VTK::Output::Dec
+
+const float opaqueAlpha = 1.0 - 1e-4; // SplatSurfaceFragment.h's OpaqueAlpha
+
+// Whether this pixel, covered `weight` at ray depth t, is a local minimum of an opaque surface's
+// coverage: every neighbor holds an opaque surface within the depth tolerance, covered at least
+// as much (vtkSurfaceSplatRasterizer::CloseCoverageDips, in one pass).
+bool coverageDip(float weight, float t)
+{
+  ivec2 size = textureSize(weightedColor, 0);
+  ivec2 center = ivec2(gl_FragCoord.xy);
+  if (any(lessThan(center, ivec2(1))) || any(greaterThanEqual(center, size - 1)))
+  {
+    return false;
+  }
+  float tolerance = dipTolerance * (perspective != 0 ? t : 1.0);
+  for (int dy = -1; dy <= 1; ++dy)
+  {
+    for (int dx = -1; dx <= 1; ++dx)
+    {
+      ivec2 at = center + ivec2(dx, dy);
+      float w = texelFetch(weightedColor, at, 0).a;
+      if (!(w >= weight) || texelFetch(weightedNormal, at, 0).a < opaqueAlpha * w ||
+        abs(texelFetch(weightedDepth, at, 0).r / w - t) > tolerance)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
 
 void main()
 {
@@ -43,7 +80,13 @@ void main()
   float alpha = normalSum.a / weight;
   if (edgeAntialiasing != 0)
   {
-    alpha *= min(1.0, weight / fullCoverage);
+    float covered = min(1.0, weight / fullCoverage);
+    if (closeDips != 0 && covered < 1.0 && weight >= dipCoverage * fullCoverage &&
+      alpha >= opaqueAlpha && coverageDip(weight, t))
+    {
+      covered = 1.0;
+    }
+    alpha *= covered;
   }
   gl_FragData[0] = vec4(shaded * alpha, alpha);
   float ndc = (depthProjection.x * -t + depthProjection.y) / (depthProjectionW.x * -t + depthProjectionW.y);
