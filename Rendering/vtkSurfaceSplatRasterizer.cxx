@@ -962,7 +962,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
 }
 
 //------------------------------------------------------------------------------
-vtkIdType vtkSurfaceSplatRasterizer::CloseCoverageDips()
+void vtkSurfaceSplatRasterizer::CloseCoverageDips()
 {
   // Inside a surface, the summed weight dips below full coverage where few splats overlap:
   // merged nodes (few per pixel and narrow for their mass; about 2.5 % of a 1 M-surfel sphere's
@@ -971,7 +971,8 @@ vtkIdType vtkSurfaceSplatRasterizer::CloseCoverageDips()
   // the background show through them, and one such pixel keeps a whole region facing away from
   // being found hidden. A dip (splat::DipCoverage) is a local minimum of coverage inside a
   // surface (depths within four pixel widths: inclined up to 76 degrees), which a silhouette's
-  // edge never is: the pixel beyond it is covered less. Raised in passes, so that a dip of two pixels closes from its lower one.
+  // edge never is: the pixel beyond it is covered less. Raised in passes, so that a dip of two
+  // pixels closes from its lower one.
   using splat::DipCoverage;
   using splat::DipDepthPixels;
   constexpr int DipPasses = 3;
@@ -1013,7 +1014,6 @@ vtkIdType vtkSurfaceSplatRasterizer::CloseCoverageDips()
   {
     candidates.insert(candidates.end(), row.begin(), row.end());
   }
-  vtkIdType closed = 0;
   std::vector<std::uint32_t> dips;
   for (int pass = 0; pass < DipPasses && !candidates.empty(); ++pass)
   {
@@ -1045,13 +1045,11 @@ vtkIdType vtkSurfaceSplatRasterizer::CloseCoverageDips()
       f = splat::Scaled(f, full / f.Weight, f.Depth);
       f.Weight = std::max(f.Weight, full); // not a rounding below it
     }
-    closed += static_cast<vtkIdType>(dips.size());
     if (dips.empty())
     {
       break;
     }
   }
-  return closed;
 }
 
 //------------------------------------------------------------------------------

@@ -301,8 +301,7 @@ protected:
     const splat::Material& material);
   /// Raises to full coverage the dips in the summed weight of opaque surfaces' interiors: before
   /// regions facing away are tested (RegionHidden), and before the fragments are resolved.
-  /// Returns how many pixels it raised.
-  vtkIdType CloseCoverageDips();
+  void CloseCoverageDips();
   /// Whether the fragments drawn so far hide a region of back-facing splats: splat centers in
   /// a box in model coordinates, axes up to `reach` long.
   bool RegionHidden(
