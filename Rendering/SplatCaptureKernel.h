@@ -29,6 +29,7 @@
 #define SplatCaptureKernel_h
 
 #include "SplatFloat8.h"       // For splat::Float8
+#include "SplatSortKey.h"      // For splat::DepthOrderKey
 #include "SplatVolumeKernel.h" // For splat::NearPlaneDistance
 
 #include <glm/glm.hpp>
@@ -36,7 +37,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 
 namespace splat
 {
@@ -262,26 +262,6 @@ SPLAT_ALWAYS_INLINE void MakeCaptureFootprints(const CaptureFrame& frame, Captur
   const Float8 boxY = Float8::Sqrt(level * yy) + 1e-3f;
   k.HalfExtentX = Float8::SelectLess(radius, boxX, radius, boxX);
   k.HalfExtentY = Float8::SelectLess(radius, boxY, radius, boxY);
-}
-
-/**
- * A float's bits as an unsigned key of the same order (negative floats included).
- */
-inline std::uint32_t SortKey(float value)
-{
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof(bits));
-  return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
-}
-
-/**
- * A kernel's depth as a sort key in the high half and its index in the low half: sorting such
- * keys orders the kernels front to back, equal depths by index (std::stable_sort's order by
- * depth, from integer comparisons that parallel and radix sorts can use).
- */
-inline std::uint64_t DepthOrderKey(float depth, std::uint32_t index)
-{
-  return static_cast<std::uint64_t>(SortKey(depth)) << 32 | index;
 }
 
 } // namespace splat

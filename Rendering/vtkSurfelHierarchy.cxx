@@ -2,6 +2,7 @@
 #include "vtkSurfelHierarchy.h"
 
 #include "SplatMortonCode.h"
+#include "SplatSortKey.h"
 
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
@@ -625,7 +626,7 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
   vtkSMPTools::For(0, blockCount,
     [&](vtkIdType begin, vtkIdType end)
     {
-      std::vector<std::pair<double, std::uint32_t>> byDepth;
+      std::vector<std::uint64_t> byDepth;
       for (vtkIdType b = begin; b < end; ++b)
       {
         std::uint32_t* const first = items.data() + offsets[b];
@@ -644,11 +645,11 @@ vtkIdType vtkSurfelHierarchy::SelectBlocks(const vtkSurfaceSplatRasterizer::Came
           for (const std::uint32_t* item = first; item != out; ++item)
           {
             const double* p = &this->Positions[3 * *item];
-            byDepth.emplace_back(glm::dot(depthRow, glm::dvec4(p[0], p[1], p[2], 1.0)), *item);
+            const double depth = glm::dot(depthRow, glm::dvec4(p[0], p[1], p[2], 1.0));
+            byDepth.push_back(splat::DepthOrderKey(static_cast<float>(depth), *item));
           }
           std::sort(byDepth.begin(), byDepth.end());
-          std::transform(byDepth.begin(), byDepth.end(), first,
-            [](const std::pair<double, std::uint32_t>& entry) { return entry.second; });
+          std::transform(byDepth.begin(), byDepth.end(), first, splat::IndexOfKey);
         }
       }
     });
