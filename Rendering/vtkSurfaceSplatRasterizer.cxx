@@ -943,7 +943,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   }
   std::fill(reasons.begin() + drawn, reasons.begin() + count, Hidden);
   drawRange(front, drawn);
-  if (!translucent && this->EdgeAntialiasing)
+  // The dips closed before the hidden test stay closed unless regions facing away were drawn.
+  if (!translucent && this->EdgeAntialiasing && (backRegions.empty() || drawn != front))
   {
     this->CloseCoverageDips();
   }
