@@ -229,6 +229,7 @@ struct vtkSurfaceSplatRasterizer::Internals
   std::vector<std::uint32_t> SplatBands; // per kept splat: first band, last in the high half
   std::vector<vtkIdType> BandOffsets; // per band, into BandSplats
   std::vector<vtkIdType> BandSplats;  // splat indices, band by band, in input order
+  std::vector<vtkIdType> ChunkBandStarts; // per setup chunk and band, where its splats go
   splat::MinifiedSplatCells MinifiedCells;
 };
 
@@ -751,44 +752,63 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
         }
       });
 
-    // Binning into bands, serially and in input order: this order is the accumulation order of
-    // every pixel, whatever the number of threads.
+    // Binning into bands in input order, which is the accumulation order of every pixel
+    // whatever the number of threads: each chunk of splats counts its own per band, and then
+    // lists them from where the chunks before it end in each band.
     const int bands = (height + BandHeight - 1) / BandHeight;
     std::vector<vtkIdType>& offsets = this->Internal->BandOffsets;
     std::vector<vtkIdType>& bandSplats = this->Internal->BandSplats;
-    offsets.assign(bands + 1, 0);
-    vtkIdType minifiedInRange = 0;
-    for (vtkIdType i = first; i < last; ++i)
+    std::vector<vtkIdType>& starts = this->Internal->ChunkBandStarts;
+    starts.assign(chunks * bands, 0);
+    // Calls f(b, i) for each band b of each kept splat i of chunk c, in input order.
+    auto forBandsOfChunk = [&](vtkIdType c, auto&& f)
     {
-      minifiedInRange += reasons[i] == Minified;
-      if (reasons[i] != Kept)
+      const vtkIdType end = std::min(first + (c + 1) * ChunkSize, last);
+      for (vtkIdType i = first + c * ChunkSize; i < end; ++i)
       {
-        continue;
+        if (reasons[i] == Kept)
+        {
+          for (std::uint32_t b = splatBands[i] & 0xffff; b <= splatBands[i] >> 16; ++b)
+          {
+            f(b, i);
+          }
+        }
       }
-      for (std::uint32_t b = splatBands[i] & 0xffff; b <= splatBands[i] >> 16; ++b)
+    };
+    vtkSMPTools::For(0, chunks,
+      [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
       {
-        ++offsets[b + 1];
-      }
-    }
+        for (vtkIdType c = chunkBegin; c < chunkEnd; ++c)
+        {
+          vtkIdType* counts = &starts[c * bands];
+          forBandsOfChunk(c, [counts](std::uint32_t b, vtkIdType) { ++counts[b]; });
+        }
+      });
+    offsets.assign(bands + 1, 0);
     for (int b = 0; b < bands; ++b)
     {
-      offsets[b + 1] += offsets[b];
+      vtkIdType end = offsets[b];
+      for (vtkIdType c = 0; c < chunks; ++c)
+      {
+        const vtkIdType count = starts[c * bands + b];
+        starts[c * bands + b] = end;
+        end += count;
+      }
+      offsets[b + 1] = end;
     }
     bandSplats.resize(offsets[bands]);
-    {
-      std::vector<vtkIdType> fill(offsets.begin(), offsets.end() - 1);
-      for (vtkIdType i = first; i < last; ++i)
+    vtkSMPTools::For(0, chunks,
+      [&](vtkIdType chunkBegin, vtkIdType chunkEnd)
       {
-        if (reasons[i] != Kept)
+        for (vtkIdType c = chunkBegin; c < chunkEnd; ++c)
         {
-          continue;
+          vtkIdType* fill = &starts[c * bands];
+          forBandsOfChunk(
+            c, [&, fill](std::uint32_t b, vtkIdType i) { bandSplats[fill[b]++] = i; });
         }
-        for (std::uint32_t b = splatBands[i] & 0xffff; b <= splatBands[i] >> 16; ++b)
-        {
-          bandSplats[fill[b]++] = i;
-        }
-      }
-    }
+      });
+    const vtkIdType minifiedInRange =
+      std::count(reasons.begin() + first, reasons.begin() + last, Minified);
 
     // 2. Splatting, band by band.
     std::vector<vtkIdType> fragments(bands, 0);
