@@ -129,6 +129,14 @@ constexpr float NegligibleCoverage = 0.02f;
 constexpr float DipCoverage = 0.25f;
 constexpr float DipDepthPixels = 4.0f;
 
+/// The dip's depth tolerance, DipDepthPixels pixel widths, for a viewport `height` pixels high
+/// whose projection scales eye y by `eyeToClipYY`: per unit eye depth in perspective, in eye
+/// units in parallel projection.
+inline float DipDepthTolerance(double eyeToClipYY, int height)
+{
+  return static_cast<float>(DipDepthPixels * 2.0 / (std::abs(eyeToClipYY) * height));
+}
+
 inline float WeightOf(const SurfaceFragment& f)
 {
   return f.Weight;

@@ -578,10 +578,10 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::ResolveLayer(vtkOpenGLRenderWin
   program->SetUniformi("edgeAntialiasing", settings->GetEdgeAntialiasing());
   program->SetUniformf("fullCoverage", settings->FullCoverageWeight());
   program->SetUniformi("closeDips", layer == 0 && !translucent);
+  program->SetUniformf("opaqueAlpha", splat::OpaqueAlpha);
   program->SetUniformf("dipCoverage", splat::DipCoverage);
-  program->SetUniformf("dipTolerance",
-    static_cast<float>(splat::DipDepthPixels * 2.0 /
-      (std::abs(camera.EyeToClip[1][1]) * camera.Viewport.y)));
+  program->SetUniformf(
+    "dipTolerance", splat::DipDepthTolerance(camera.EyeToClip[1][1], camera.Viewport.y));
   splat::SetLightingUniforms(program, lights, material, camera.EyeToClip);
 
   vtkTextureObject* inputs[3] = { this->WeightedColor, this->WeightedNormal, this->WeightedDepth };

@@ -995,15 +995,13 @@ void vtkSurfaceSplatRasterizer::CloseCoverageDips()
   // edge never is: the pixel beyond it is covered less. Raised in passes, so that a dip of two
   // pixels closes from its lower one.
   using splat::DipCoverage;
-  using splat::DipDepthPixels;
   constexpr int DipPasses = 3;
   const Frame& frame = this->CurrentFrame;
   const int width = frame.View.Viewport.x;
   const int height = frame.View.Viewport.y;
   const int layers = this->Layers;
   const float full = frame.FullCoverage;
-  const float pixelWidth =
-    static_cast<float>(2.0 / (std::abs(frame.View.EyeToClip[1][1]) * height));
+  const float depthTolerance = splat::DipDepthTolerance(frame.View.EyeToClip[1][1], height);
   auto front = [&](std::size_t pixel) -> const Fragment* {
     const Fragment& f = this->Fragments[pixel * layers];
     return this->FragmentCounts[pixel] > 0 && !f.Shaded() &&
@@ -1043,8 +1041,7 @@ void vtkSurfaceSplatRasterizer::CloseCoverageDips()
       [&](std::uint32_t pixel)
       {
         const Fragment& f = *front(pixel);
-        const float tolerance =
-          DipDepthPixels * pixelWidth * (frame.Perspective ? f.Depth : 1.0f);
+        const float tolerance = depthTolerance * (frame.Perspective ? f.Depth : 1.0f);
         for (int dy = -1; dy <= 1; ++dy)
         {
           for (int dx = -1; dx <= 1; ++dx)

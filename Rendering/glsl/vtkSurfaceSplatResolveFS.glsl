@@ -16,6 +16,7 @@ uniform vec2 depthProjection;
 uniform vec2 depthProjectionW;
 uniform int edgeAntialiasing;
 uniform float fullCoverage;
+uniform float opaqueAlpha; // SplatSurfaceFragment.h's OpaqueAlpha
 // Raise coverage dips of the front layer of opaque splats (SplatSurfaceFragment.h's
 // DipCoverage): the lowest share of full coverage, and the depth tolerance per unit eye depth
 // (perspective) or in eye units (parallel).
@@ -27,8 +28,6 @@ uniform int perspective;
 //VTK::SplatLighting::Dec
 
 //VTK::Output::Dec
-
-const float opaqueAlpha = 1.0 - 1e-4; // SplatSurfaceFragment.h's OpaqueAlpha
 
 // Whether this pixel, covered `weight` at ray depth t, is a local minimum of an opaque surface's
 // coverage: every neighbor holds an opaque surface within the depth tolerance, covered at least
