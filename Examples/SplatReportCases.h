@@ -94,8 +94,8 @@ inline const char* FilterModeName(int mode)
   }
 }
 
-// The default mapper's settings in words, e.g. "EWA, cutoff automatic (0.5 to 4), 3 layers,
-// edge AA on".
+// The default mapper's settings in words, e.g. "EWA, cutoff automatic (0.5 to 4), layers
+// automatic (5 or 3), edge AA on".
 inline std::string DefaultSettingDescription()
 {
   vtkNew<vtkSurfaceSplatMapper> mapper;
@@ -107,7 +107,10 @@ inline std::string DefaultSettingDescription()
        << (mapper->GetMagnifiedLowPassVariance() > 0.0
               ? Fixed(mapper->GetMagnifiedLowPassVariance(), 2) + " magnified"
               : "automatic (1/12 or 1)")
-       << ", " << layers << (layers == 1 ? " layer" : " layers") << ", edge AA "
+       << ", "
+       << (layers > 0 ? std::to_string(layers) + (layers == 1 ? " layer" : " layers")
+                      : "layers automatic (5 or 3)")
+       << ", edge AA "
        << (mapper->GetEdgeAntialiasing() ? "on" : "off") << ", coverage threshold "
        << (mapper->GetCoverageThreshold() > 0.0 ? Fixed(mapper->GetCoverageThreshold(), 2)
                                                 : "automatic (0.4 or 0.8)")
@@ -145,6 +148,8 @@ inline std::vector<SplatSetting> SplatSettings()
       [](vtkSurfaceSplatMapper* m) { m->SetFilterMode(vtkSurfaceSplatMapper::APPROXIMATE); },
       true },
     { "layers", "layers=1", [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayers(1); } },
+    { "layers", "layers=3 (paper)",
+      [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayersToPaper(); } },
     { "layers", "layers=5", [](vtkSurfaceSplatMapper* m) { m->SetNumberOfLayers(5); } },
     { "minified", "minified=0 (exact)",
       [](vtkSurfaceSplatMapper* m) { m->SetMinifiedVariance(0.0); }, false, true },

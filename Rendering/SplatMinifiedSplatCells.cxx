@@ -69,7 +69,7 @@ void MinifiedSplatCells::SetUp(
   this->ViewportWidth = width;
   this->ViewportHeight = height;
   this->Layers = layers;
-  this->Reach = static_cast<int>(std::floor(std::sqrt(2.0 * cutoff * (1.0 + maximumVariance))));
+  this->Reach = ReachOf(cutoff, maximumVariance);
   this->Width = width + 2 * this->Reach;
   this->Height = height + 2 * this->Reach;
   this->Bands = (this->Height + BandHeight - 1) / BandHeight;

@@ -58,6 +58,12 @@ public:
   /// Cells kept outside the viewport on each side.
   int GetReach() const { return this->Reach; }
 
+  /// The reach SetUp gives the grid, before it is set up.
+  static int ReachOf(double cutoff, double maximumVariance)
+  {
+    return static_cast<int>(std::floor(std::sqrt(2.0 * cutoff * (1.0 + maximumVariance))));
+  }
+
   /**
    * Makes room for the lists of `chunks` chunks of splats; the lists keep their capacity from
    * frame to frame. ClearChunk empties one chunk's lists (each chunk may be listed by its own

@@ -464,7 +464,12 @@ void vtkOpenGLSurfaceSplatRasterizer::Render(vtkRenderer* renderer,
   {
     glGenQueries(1, &internal.Query);
   }
-  const int layers = translucent || settings->GetEdgeAntialiasing() ? settings->GetNumberOfLayers() : 1;
+  // Automatic layers: the paper's, since each layer is a pass over every splat.
+  const int requested = settings->GetNumberOfLayers();
+  const int layers = translucent || settings->GetEdgeAntialiasing()
+    ? (requested > 0 ? requested : vtkSurfaceSplatRasterizer::PaperLayers)
+    : 1;
+  this->LastNumberOfLayers = layers;
   for (int layer = 0; layer < layers; ++layer)
   {
     vtkTextureObject* depth = internal.VisibilityDepth[layer % 2];
@@ -717,5 +722,6 @@ void vtkOpenGLSurfaceSplatRasterizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ApproximateFilter: " << this->ApproximateFilter << "\n";
+  os << indent << "LastNumberOfLayers: " << this->LastNumberOfLayers << "\n";
   os << indent << "PeeledLayers: " << this->PeeledLayers << "\n";
 }

@@ -102,8 +102,11 @@ public:
   ///@}
 
   /**
-   * Layers peeled by the last render (at most the number of layers).
+   * The number of layers the last render kept (the settings' NumberOfLayers, the paper's 3
+   * where that is automatic, 1 for an opaque input without edge antialiasing), and how many of
+   * them it peeled before the pixels were covered.
    */
+  vtkGetMacro(LastNumberOfLayers, int);
   vtkGetMacro(PeeledLayers, int);
 
   /**
@@ -121,6 +124,7 @@ protected:
   ~vtkOpenGLSurfaceSplatRasterizer() override;
 
   bool ApproximateFilter = false;
+  int LastNumberOfLayers = 0;
   int PeeledLayers = 0;
 
 private:

@@ -327,6 +327,14 @@ int vtkSurfaceSplatMapper::GetNumberOfLayers()
 }
 
 //------------------------------------------------------------------------------
+int vtkSurfaceSplatMapper::GetLastNumberOfLayers()
+{
+  return this->LastBackend == vtkSplatBackend::OPENGL
+    ? this->OpenGLRasterizer->GetLastNumberOfLayers()
+    : this->Rasterizer->GetLastNumberOfLayers();
+}
+
+//------------------------------------------------------------------------------
 void vtkSurfaceSplatMapper::SetEdgeAntialiasing(bool antialiasing)
 {
   if (antialiasing != this->Rasterizer->GetEdgeAntialiasing())
@@ -809,6 +817,7 @@ void vtkSurfaceSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OpacityArrayName: " << (this->OpacityArrayName ? this->OpacityArrayName : "(none)")
      << "\n";
   os << indent << "NumberOfLayers: " << this->Rasterizer->GetNumberOfLayers() << "\n";
+  os << indent << "LastNumberOfLayers: " << this->GetLastNumberOfLayers() << "\n";
   os << indent << "EdgeAntialiasing: " << this->Rasterizer->GetEdgeAntialiasing() << "\n";
   os << indent << "CoverageThreshold: " << this->CoverageThreshold << "\n";
   os << indent << "LastCoverageThreshold: " << this->LastCoverageThreshold << "\n";

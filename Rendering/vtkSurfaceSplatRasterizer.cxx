@@ -373,16 +373,12 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const int width = camera.Viewport.x;
   const int height = camera.Viewport.y;
   const std::size_t pixels = static_cast<std::size_t>(std::max(width, 0)) * std::max(height, 0);
-  // Layers only where something can be seen through: translucent splats, or the partly covered
-  // edges of edge antialiasing, which show the surfaces behind them (an edge of a thin part
-  // shows its own back side first). Otherwise one fragment per pixel.
   bool translucent = false;
   for (std::size_t i = 0; surfels.Opacities && i < surfels.Count && !translucent; ++i)
   {
     translucent = surfels.Opacities[i] < 1.0f;
   }
-  this->Layers = translucent || this->EdgeAntialiasing ? this->NumberOfLayers : 1;
-  this->Fragments.resize(pixels * this->Layers);
+  this->Layers = 1;
   this->FragmentCounts.assign(pixels, 0);
   this->SplattedCount = this->MinifiedCount = this->MergedCount = 0;
   this->FrustumCulledCount = this->BackfaceCulledCount = this->HiddenCount = 0;
@@ -441,8 +437,7 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   // Minified splats are summed per pixel where the exact kernel is the EWA one of an opaque
   // surfel (SplatMinifiedSplatCells.h), in frames where enough of them are minified to pay.
   splat::MinifiedSplatCells& minifiedCells = this->Internal->MinifiedCells;
-  minifiedCells.SetUp(width, height, this->Layers, widestCutoff, this->MinifiedVariance);
-  const int reach = minifiedCells.GetReach();
+  const int reach = splat::MinifiedSplatCells::ReachOf(widestCutoff, this->MinifiedVariance);
   splat::MinifiedSurfelProjector::Frame minifiedFrame;
   minifiedFrame.ModelToEye = modelToEye;
   minifiedFrame.EyeToClip = eyeToClip;
@@ -459,6 +454,24 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   const bool minify = this->MinifiedVariance > 0.0 && filter == splat::KernelFilter::EWA &&
     !differential && !translucent &&
     MinifiedShare(minifiedProjector, surfels) >= MinifiedShareToPay;
+  // Minified splats are summed per pixel under the paper's unit low-pass; under a smaller one
+  // (splats of one color) each is drawn with its own kernel, which then reaches only the pixel
+  // centers next to it, set up from its single-precision projection.
+  const bool sumMinified = this->MinifiedLowPassVariance >= 1.0;
+  // Layers only where something can be seen through: translucent splats, or the partly covered
+  // edges of edge antialiasing, which show the surfaces behind them (an edge of a thin part
+  // shows its own back side first). Otherwise one fragment per pixel. Automatic: minified
+  // splats drawn with their own kernels are thinner in depth than a pixel's stretch of a
+  // grazing surface, which they split into a fragment per z threshold; further layers would
+  // keep more of those slices of one surface and blend them over each other.
+  if (translucent || this->EdgeAntialiasing)
+  {
+    this->Layers = this->NumberOfLayers > 0 ? this->NumberOfLayers
+      : minify && !sumMinified              ? PaperLayers
+                                            : AutomaticLayers;
+  }
+  this->Fragments.resize(pixels * this->Layers);
+  minifiedCells.SetUp(width, height, this->Layers, widestCutoff, this->MinifiedVariance);
   // With a hierarchy of the surfels, the splats are the nodes it selects (whose coarser levels
   // are all minified), read block by block from its copy, and regions facing away come last.
   const vtkSurfelHierarchy* hierarchy = minify && surfels.Hierarchy &&
@@ -510,10 +523,6 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   { return static_cast<std::uint32_t>((s.Y0 / BandHeight) | (s.Y1 / BandHeight) << 16); };
   const glm::dmat3 axisToEye(modelToEye);
   const glm::dvec3 eyeTranslation(modelToEye[3]);
-  // Minified splats are summed per pixel under the paper's unit low-pass; under a smaller one
-  // (splats of one color) each is drawn with its own kernel, which then reaches only the pixel
-  // centers next to it, set up from its single-precision projection.
-  const bool sumMinified = this->MinifiedLowPassVariance >= 1.0;
   const double minifiedLowPass =
     std::max(this->MinifiedLowPassVariance, splat::UnfilteredMinimumVariance);
   const double minifiedMassScale =

@@ -92,13 +92,24 @@ public:
   /// Most fragments a pixel can hold.
   static constexpr int MaximumLayers = 8;
 
+  /// The paper's fragments per pixel.
+  static constexpr int PaperLayers = 3;
+  /// What NumberOfLayers 0 gives a frame whose splats are not minified surfels drawn each with
+  /// its own kernel.
+  static constexpr int AutomaticLayers = 5;
+
   /**
    * Fragments per pixel (paper 000, section 6) for translucent scenes, and for the partly
-   * covered edges of opaque ones with edge antialiasing. Default 3. Opaque scenes without edge
-   * antialiasing keep one fragment per pixel and allocate no more.
+   * covered edges of opaque ones with edge antialiasing. Opaque scenes without edge
+   * antialiasing keep one fragment per pixel and allocate no more. Default 0, automatic: the
+   * paper's 3 in frames that draw minified surfels each with its own kernel (surfels of one
+   * color under a low-pass below 1, see MinifiedLowPassVariance), else 5 (see
+   * vtkSurfaceSplatMapper::SetNumberOfLayers for why). GetLastNumberOfLayers() tells what the
+   * last frame kept.
    */
-  vtkSetClampMacro(NumberOfLayers, int, 1, MaximumLayers);
+  vtkSetClampMacro(NumberOfLayers, int, 0, MaximumLayers);
   vtkGetMacro(NumberOfLayers, int);
+  int GetLastNumberOfLayers() const { return this->Layers; }
 
   /**
    * Edge antialiasing: a pixel's summed kernel weight q below the full-coverage threshold
@@ -314,7 +325,7 @@ protected:
 
   double Cutoff = 1.0;
   double DepthThreshold = 1.0;
-  int NumberOfLayers = 3;
+  int NumberOfLayers = 0;
   bool EdgeAntialiasing = true;
   double CoverageThreshold = splat::PaperCoverageThreshold;
   splat::KernelFilter Filter = splat::KernelFilter::EWA;

@@ -113,7 +113,7 @@ def test_mapper(servermanager):
          "LevelOfDetail": 1, "Radius": 1.0,
          "DepthThreshold": 1.0,
          "FilterMode": 0,
-         "Backend": 0, "NumberOfLayers": 3, "EdgeAntialiasing": 1, "CoverageThreshold": 0.0,
+         "Backend": 0, "NumberOfLayers": 0, "EdgeAntialiasing": 1, "CoverageThreshold": 0.0,
          "RadiusArrayName": "Radius", "OpacityArrayName": "Opacity",
          "TangentAxis0ArrayName": "TangentAxis0",
          "TangentAxis1ArrayName": "TangentAxis1", "Primitive": 0,
@@ -129,8 +129,8 @@ def test_mapper(servermanager):
     # The NumberOfLayers range.
     layers = smproxy.GetProperty("NumberOfLayers").FindDomain("vtkSMIntRangeDomain")
     if check(layers is not None, "NumberOfLayers has a range domain"):
-        check(layers.GetMinimum(0) == 1 and layers.GetMaximum(0) == 8,
-              "NumberOfLayers ranges over 1..8 (got %d..%d)"
+        check(layers.GetMinimum(0) == 0 and layers.GetMaximum(0) == 8,
+              "NumberOfLayers ranges over 0 (automatic)..8 (got %d..%d)"
               % (layers.GetMinimum(0), layers.GetMaximum(0)))
     check(smproxy.GetProperty("EdgeAntialiasing").FindDomain("vtkSMBooleanDomain") is not None,
           "EdgeAntialiasing is a boolean")

@@ -27,7 +27,7 @@ MAPPER_SETTINGS = [
     ("SurfaceSplatCutoff", 0.0, 2.0, "CutoffInfo", 2.0),
     ("SurfaceSplatDepthThreshold", 1.0, 0.5, "DepthThresholdInfo", 0.5),
     ("SurfaceSplatFilterMode", "EWA", "Circular", "FilterModeInfo", 1),
-    ("SurfaceSplatNumberOfLayers", 3, 5, "NumberOfLayersInfo", 5),
+    ("SurfaceSplatNumberOfLayers", 0, 5, "NumberOfLayersInfo", 5),
     ("SurfaceSplatEdgeAntialiasing", 1, 0, "EdgeAntialiasingInfo", 0),
     ("SurfaceSplatCoverageThreshold", 0.0, 0.6, "CoverageThresholdInfo", 0.6),
     ("SurfaceSplatRadius", 1.0, 0.25, "RadiusInfo", 0.25),
