@@ -75,6 +75,8 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <numeric>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -141,12 +143,12 @@ standard deviation, emission-absorption front to back); the alternative filters 
 unit-variance screen filter. The ray casters interpolate voxels trilinearly instead of summing
 Gaussians: their error includes that difference of model.
 Time is the median milliseconds per frame around vtkRenderWindow::Render(), over all timed
-frames of all rounds (each round renders every case: a warm-up frame, then the timed frames);
-error is the RMSE and PSNR of RGB in [0,1] (OpenImageIO's ImageBufAlgo::compare), for the
-scene's reference and for the same scene with the other pixel filter (box or Gaussian). A case
-is on the Pareto front when no other is as exact and faster in every round, or more exact and
-no slower in median; cases that draw the same image to 80 dB (a setting the scene's path
-does not use) do not dominate each other.
+frames of all rounds (each round renders every case, in an order of its own: a warm-up frame,
+then the timed frames); error is the RMSE and PSNR of RGB in [0,1] (OpenImageIO's
+ImageBufAlgo::compare), for the scene's reference and for the same scene with the other pixel
+filter (box or Gaussian). A case is on the Pareto front when no other is as exact and faster in
+every round, or more exact and no slower in median; cases that draw the same image to 80 dB (a
+setting the scene's path does not use) do not dominate each other.
 
 Writes into the output folder: error_vs_time.csv, error_vs_time.md (a table per scene, the
 default setting and the Pareto front of error against time marked), error_vs_time.png (the
@@ -373,11 +375,14 @@ std::vector<Row> MeasureScene(vtkRenderWindow* window, vtkRenderer* renderer,
   for (int round = 0; round < options.Rounds; ++round)
   {
     const bool last = round + 1 == options.Rounds;
-    // Each round starts one case further on, so that no case always follows the same one (the
-    // first after the peers' OpenGL frames ran slower: the default by up to a fifth).
-    for (std::size_t k = 0; k < cases.size(); ++k)
+    // Each round times the cases in an order of its own (fixed by the round's number), so that
+    // no case always follows the same one: the one after the peers' OpenGL frames ran slower
+    // (the default, listed first, by up to a fifth against the identical layers=5).
+    std::vector<std::size_t> order(cases.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), std::mt19937(static_cast<unsigned>(round)));
+    for (const std::size_t i : order)
     {
-      const std::size_t i = (k + static_cast<std::size_t>(round)) % cases.size();
       const Case& c = cases[i];
       vtkSmartPointer<vtkProp3D> prop = makeProp(c);
       const int threads = UseThreads(c.Threads > 0 ? c.Threads : 0);
@@ -593,7 +598,7 @@ int Run(const Options& options)
      << glRenderer << ", vtkSMPTools backend " << vtkSMPTools::GetBackend() << " with "
      << allThreads << " threads by default. Time: median ms per frame around "
      << "`vtkRenderWindow::Render()`, over " << options.Rounds << " rounds (each renders every "
-     << "case: a warm-up frame, then up to " << options.Frames << " timed frames); the "
+     << "case, in an order of its own: a warm-up frame, then up to " << options.Frames << " timed frames); the "
      << "machine's other load shows in these times. Error: RMSE and PSNR of RGB in [0,1] "
      << "against the scene's reference (OpenImageIO `ImageBufAlgo::compare`); the last column "
      << "is the RMSE against the same scene with the other pixel filter (box or Gaussian), "
