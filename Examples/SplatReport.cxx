@@ -12,7 +12,8 @@
 //   weighted by the screen low-pass filter of EWA (a Gaussian of unit variance in pixels,
 //   truncated at 3 sigma). The splats are a regular grid of surfels colored with the
 //   checkerboard's exact average over their grid cells (a box prefilter). The scene and its
-//   reference are in SplatCheckerboardScene.h and SplatCheckerboardReference.h, shared with TestSurfaceSplatCheckerboardError.
+//   reference are in SplatCheckerboardScene.h and SplatCheckerboardReference.h, shared with
+//   TestSurfaceSplatCheckerboardError.
 // - bunny, bunny-closeup, armadillo, armadillo-closeup, armadillo-points, sphere: meshes (two
 //   scans, each seen whole and magnified, the armadillo also from a point cloud scattered over
 //   it, and a sphere of --points vertices seen whole; SplatReportMeshes.h); the reference is the
@@ -598,8 +599,8 @@ int Run(const Options& options)
      << glRenderer << ", vtkSMPTools backend " << vtkSMPTools::GetBackend() << " with "
      << allThreads << " threads by default. Time: median ms per frame around "
      << "`vtkRenderWindow::Render()`, over " << options.Rounds << " rounds (each renders every "
-     << "case, in an order of its own: a warm-up frame, then up to " << options.Frames << " timed frames); the "
-     << "machine's other load shows in these times. Error: RMSE and PSNR of RGB in [0,1] "
+     << "case, in an order of its own: a warm-up frame, then up to " << options.Frames
+     << " timed frames); the machine's other load shows in these times. Error: RMSE and PSNR of RGB in [0,1] "
      << "against the scene's reference (OpenImageIO `ImageBufAlgo::compare`); the last column "
      << "is the RMSE against the same scene with the other pixel filter (box or Gaussian), "
      << "which ranks blur differently. The default setting is in bold; every other "
@@ -607,8 +608,8 @@ int Run(const Options& options)
      << "the scene is as exact and faster, or more exact and not slower; a row counts as "
      << "faster than another only if it was in every round (each round times every case in "
      << "turn, under about the same load), so that rows doing the same work do not rank by "
-     << "the machine's noise, and as not slower where its median time is no higher; rows that draw the same image to 80 dB (an RMS difference "
-     << "under 1e-4: a setting the scene's path does not use, or the value the default picks) "
+     << "the machine's noise, and as not slower where its median time is no higher; rows "
+     << "that draw the same image to 80 dB (an RMS difference under 1e-4: a setting the scene's path does not use, or the value the default picks) "
      << "never dominate each other. "
      << "Backends: the CPU rows run on vtkSMPTools' "
      << "threads; the OpenGL rows repeat the settings in shaders on the OpenGL renderer above "

@@ -321,6 +321,12 @@ void vtkSurfaceSplatMapper::SetNumberOfLayers(int layers)
 }
 
 //------------------------------------------------------------------------------
+void vtkSurfaceSplatMapper::SetNumberOfLayersToPaper()
+{
+  this->SetNumberOfLayers(vtkSurfaceSplatRasterizer::PaperLayers);
+}
+
+//------------------------------------------------------------------------------
 int vtkSurfaceSplatMapper::GetNumberOfLayers()
 {
   return this->Rasterizer->GetNumberOfLayers();

@@ -244,7 +244,7 @@ public:
   void SetNumberOfLayers(int layers);
   int GetNumberOfLayers();
   void SetNumberOfLayersToAutomatic() { this->SetNumberOfLayers(0); }
-  void SetNumberOfLayersToPaper() { this->SetNumberOfLayers(3); }
+  void SetNumberOfLayersToPaper();
   int GetLastNumberOfLayers();
   ///@}
 
