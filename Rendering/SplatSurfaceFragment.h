@@ -125,7 +125,9 @@ constexpr float NegligibleCoverage = 0.02f;
 /// A coverage dip, raised to full coverage before the resolve (the CPU rasterizer's
 /// CloseCoverageDips, the OpenGL resolve's first layer): an opaque front surface covered at
 /// least DipCoverage of full coverage but not fully, whose eight neighbors hold the same opaque
-/// surface, within DipDepthPixels pixel widths in depth, covered at least as much.
+/// surface covered at least as much: each pair of opposite ones at depths on a line through
+/// its own within DipDepthPixels pixel widths, which a steep surface's are too and a surface
+/// seen behind an edge (at this tolerance) is not.
 constexpr float DipCoverage = 0.25f;
 constexpr float DipDepthPixels = 4.0f;
 

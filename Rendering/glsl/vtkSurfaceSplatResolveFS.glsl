@@ -29,9 +29,18 @@ uniform int perspective;
 
 //VTK::Output::Dec
 
+// Whether pixel `at` holds an opaque surface covered at least `weight`, and its ray depth.
+bool opaqueAt(ivec2 at, float weight, out float depth)
+{
+  float w = texelFetch(weightedColor, at, 0).a;
+  depth = texelFetch(weightedDepth, at, 0).r / w;
+  return w >= weight && texelFetch(weightedNormal, at, 0).a >= opaqueAlpha * w;
+}
+
 // Whether this pixel, covered `weight` at ray depth t, is a local minimum of an opaque surface's
-// coverage: every neighbor holds an opaque surface within the depth tolerance, covered at least
-// as much (vtkSurfaceSplatRasterizer::CloseCoverageDips, in one pass).
+// coverage: each pair of opposite neighbors holds an opaque surface covered at least as much,
+// whose depths lie on a line through t within the depth tolerance
+// (vtkSurfaceSplatRasterizer::CloseCoverageDips, in one pass).
 bool coverageDip(float weight, float t)
 {
   ivec2 size = textureSize(weightedColor, 0);
@@ -41,17 +50,14 @@ bool coverageDip(float weight, float t)
     return false;
   }
   float tolerance = dipTolerance * (perspective != 0 ? t : 1.0);
-  for (int dy = -1; dy <= 1; ++dy)
+  ivec2 steps[4] = ivec2[4](ivec2(1, 0), ivec2(1, 1), ivec2(0, 1), ivec2(-1, 1));
+  for (int i = 0; i < 4; ++i)
   {
-    for (int dx = -1; dx <= 1; ++dx)
+    float ahead, behind;
+    if (!opaqueAt(center + steps[i], weight, ahead) ||
+      !opaqueAt(center - steps[i], weight, behind) || abs(ahead + behind - 2.0 * t) > tolerance)
     {
-      ivec2 at = center + ivec2(dx, dy);
-      float w = texelFetch(weightedColor, at, 0).a;
-      if (!(w >= weight) || texelFetch(weightedNormal, at, 0).a < opaqueAlpha * w ||
-        abs(texelFetch(weightedDepth, at, 0).r / w - t) > tolerance)
-      {
-        return false;
-      }
+      return false;
     }
   }
   return true;
