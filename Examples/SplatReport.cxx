@@ -285,8 +285,6 @@ void TimeFrames(
   }
 }
 
-
-
 std::string Slug(const std::string& text)
 {
   std::string slug;

@@ -36,6 +36,26 @@ inline bool HeadlightOnly(const std::vector<Light>& lights)
   return lights.size() == 1 && lights[0].Headlight && !lights[0].Positional;
 }
 
+/// Below this cosine between a pixel's ray and its filtered normal the pixel sees its surface
+/// edge-on (within about 6 degrees), where which side faces the viewer is below what the splats
+/// resolve.
+constexpr float EdgeOnCosine = 0.1f;
+
+/**
+ * Two-sided lighting: the unit filtered normal turned towards the viewer along `ray` (the
+ * pixel's ray direction, of any length). Seen edge-on, the side facing the view axis is taken
+ * instead, the side the headlight lights: the tangent disks of splats just past a curved
+ * silhouette overshoot it and show the surface edge-on from behind, and turned towards the
+ * viewer their normals point away from the light and draw dark dots along the silhouette. In a
+ * parallel projection both rules agree.
+ */
+inline glm::vec3 FacingNormal(const glm::vec3& normal, const glm::vec3& ray)
+{
+  const float cosine = glm::dot(normal, ray) / glm::length(ray);
+  const bool away = std::abs(cosine) < EdgeOnCosine ? normal.z < 0.0f : cosine > 0.0f;
+  return away ? -normal : normal;
+}
+
 /**
  * The vtkProperty terms. The surface color (a point's scalar color or the property's diffuse
  * color, filtered across splats) is multiplied in at shading time: into the diffuse term always

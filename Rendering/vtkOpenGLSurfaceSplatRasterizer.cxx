@@ -584,6 +584,7 @@ void vtkOpenGLSurfaceSplatRasterizer::Internals::ResolveLayer(vtkOpenGLRenderWin
   program->SetUniformf("fullCoverage", settings->FullCoverageWeight());
   program->SetUniformi("closeDips", layer == 0 && !translucent);
   program->SetUniformf("opaqueAlpha", splat::OpaqueAlpha);
+  program->SetUniformf("edgeOnCosine", splat::EdgeOnCosine);
   program->SetUniformf("dipCoverage", splat::DipCoverage);
   program->SetUniformf(
     "dipTolerance", splat::DipDepthTolerance(camera.EyeToClip[1][1], camera.Viewport.y));

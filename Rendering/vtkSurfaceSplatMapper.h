@@ -28,7 +28,9 @@
  * Normals may point either way (scans estimate them without a consistent orientation): they
  * are filtered on one side and the filtered normal is turned towards the viewer (two-sided
  * lighting), so that the edge-on splats of a silhouette, whose normals are nearly
- * perpendicular to the view, do not bend it.
+ * perpendicular to the view, do not bend it; where a pixel sees its surface edge-on, it is
+ * turned towards the view axis instead, so that disks overshooting a silhouette are not drawn
+ * dark (splat::FacingNormal).
  *
  * Differential points (SetPrimitiveToDifferentialPoints; Kalaiah and Varshney, *Modeling and
  * Rendering of Points with Local Geometry*, 2003), as vtkDifferentialPointGenerator makes them:

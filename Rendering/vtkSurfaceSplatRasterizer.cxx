@@ -332,10 +332,7 @@ glm::vec4 vtkSurfaceSplatRasterizer::ShadeFragment(const Fragment& f, int x, int
   const float length = glm::length(normal);
   normal = length > 0.0f ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
   // Two-sided lighting: the filtered normal (AddNormal) turned towards the viewer.
-  if (glm::dot(normal, frame.RayDirection * pixel) > 0.0f)
-  {
-    normal = -normal;
-  }
+  normal = splat::FacingNormal(normal, frame.RayDirection * pixel);
   const glm::vec3 color = glm::vec3(f.Color[0], f.Color[1], f.Color[2]) / f.Weight;
   const glm::vec3 shaded = glm::clamp(
     splat::Shade(*frame.Lights, *frame.Surface, color, position, normal, !frame.Perspective),

@@ -4,7 +4,8 @@
 // summed attributes divided by the summed weights, lit with VTK's lights and the actor's
 // property (vtkSplatLighting.glsl), opacity times coverage (section 7), written
 // premultiplied. Two-sided lighting: the summed normal, whose terms were added on one side
-// (SplatSurfaceFragment.h's AddNormal), is turned towards the viewer. The first layer also writes its window depth.
+// (SplatSurfaceFragment.h's AddNormal), is turned towards the viewer (facingNormal). The first
+// layer also writes its window depth.
 
 in vec2 texCoord;
 uniform sampler2D weightedColor;   // (w r, w g, w b, w)
@@ -17,6 +18,7 @@ uniform vec2 depthProjectionW;
 uniform int edgeAntialiasing;
 uniform float fullCoverage;
 uniform float opaqueAlpha; // SplatSurfaceFragment.h's OpaqueAlpha
+uniform float edgeOnCosine; // SplatLighting.h's EdgeOnCosine
 // Raise coverage dips of the front layer of opaque splats (SplatSurfaceFragment.h's
 // DipCoverage): the lowest share of full coverage, and the depth tolerance per unit eye depth
 // (perspective) or in eye units (parallel).
@@ -28,6 +30,15 @@ uniform int perspective;
 //VTK::SplatLighting::Dec
 
 //VTK::Output::Dec
+
+// SplatLighting.h's FacingNormal: the unit normal turned towards the viewer along `ray`, or,
+// seen edge-on, towards the view axis.
+vec3 facingNormal(vec3 normal, vec3 ray)
+{
+  float cosine = dot(normal, ray) / length(ray);
+  bool away = abs(cosine) < edgeOnCosine ? normal.z < 0.0 : cosine > 0.0;
+  return away ? -normal : normal;
+}
 
 // Whether pixel `at` holds an opaque surface covered at least `weight`, and its ray depth.
 bool opaqueAt(ivec2 at, float weight, out float depth)
@@ -77,10 +88,7 @@ void main()
   vec3 position = rayOrigin * pixel + t * (rayDirection * pixel);
   float normalLength = length(normalSum.xyz);
   vec3 normal = normalLength > 0.0 ? normalSum.xyz / normalLength : vec3(0.0, 0.0, 1.0);
-  if (dot(normal, rayDirection * pixel) > 0.0)
-  {
-    normal = -normal;
-  }
+  normal = facingNormal(normal, rayDirection * pixel);
   vec3 shaded = clamp(shade(colorSum.rgb / weight, position, normal), 0.0, 1.0);
   float alpha = normalSum.a / weight;
   if (edgeAntialiasing != 0)

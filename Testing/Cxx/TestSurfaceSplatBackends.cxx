@@ -174,16 +174,22 @@ int main(int argc, char* argv[])
   // table (a few 1e-6 per weight), and shades at the weighted mean depth of a surface where the
   // CPU takes its nearest contribution, which moves specular highlights and the accumulate-or-
   // separate decision at silhouettes (the bunny's ears and folds: single pixels up to 0.77).
-  // The OpenGL backend's other filters exceed every bound (approximate / circular: sphere
-  // 0.0131 / 0.0187, bunny 0.0281 / 0.0313, checkerboard 0.0645 / 0.1473, translucent planes
-  // 0.0191 / 0.0066, magnified sphere 0.0099 / 0.1183): a change of the exact filter to either
-  // fails.
-  const std::vector<std::pair<std::function<Scene(vtkRenderer*)>, double>> scenes = {
-    { Sphere, 0.011 },
-    { [&bunny](vtkRenderer* r) { return Bunny(r, bunny); }, 0.008 },
-    { Checkerboard, 0.004 },
-    { TranslucentPlanes, 0.004 },
-    { MagnifiedSphere, 0.002 },
+  // The OpenGL backend's other filters exceed the bound of every scene but the sphere, whose
+  // rim outweighs its filter (approximate / circular: sphere 0.0104 / 0.0190, bunny
+  // 0.0253 / 0.0290, checkerboard 0.1048 / 0.1340, translucent planes 0.0176 / 0.0125,
+  // magnified sphere 0.0099 / 0.1183): a change of the exact filter to either fails elsewhere.
+  struct Case
+  {
+    std::function<Scene(vtkRenderer*)> Make;
+    double MaxRmse;
+    bool TellsFilters;
+  };
+  const std::vector<Case> scenes = {
+    { Sphere, 0.011, false },
+    { [&bunny](vtkRenderer* r) { return Bunny(r, bunny); }, 0.008, true },
+    { Checkerboard, 0.004, true },
+    { TranslucentPlanes, 0.004, true },
+    { MagnifiedSphere, 0.002, true },
   };
   int failures = 0;
   for (const auto& entry : scenes)
@@ -192,13 +198,13 @@ int main(int argc, char* argv[])
     renderer->SetBackground(0.1, 0.1, 0.15);
     auto window = splattest::MakeRenderWindow(Width, Height);
     window->AddRenderer(renderer);
-    Scene scene = entry.first(renderer);
+    Scene scene = entry.Make(renderer);
     if (scene.Mappers.empty())
     {
       std::printf("%-20s skipped: no data\n", scene.Name.c_str());
       continue;
     }
-    scene.MaxRmse = entry.second;
+    scene.MaxRmse = entry.MaxRmse;
     std::vector<double> images[2];
     const int backends[2] = { vtkSplatBackend::CPU, vtkSplatBackend::OPENGL };
     for (int b = 0; b < 2; ++b)
@@ -249,7 +255,7 @@ int main(int argc, char* argv[])
         splattest::RMSE(images[0], splattest::ToRGB(splattest::Capture(window)));
       std::printf("%-20s CPU EWA vs OpenGL %s RMSE %.5f\n", scene.Name.c_str(), filter.first,
         filterRmse);
-      if (!(filterRmse > scene.MaxRmse))
+      if (entry.TellsFilters && !(filterRmse > scene.MaxRmse))
       {
         std::printf("FAIL: %s: the bound does not tell EWA from the %s filter\n",
           scene.Name.c_str(), filter.first);
