@@ -229,19 +229,21 @@ public:
    *
    * Default 0, automatic: on the CPU 5, or the paper's 3 (SetNumberOfLayersToPaper) in frames
    * that draw minified surfels of one color each with its own kernel (dense clouds seen whole,
-   * see SetMinifiedVariance); on OpenGL the paper's 3, since each layer is a pass over every
-   * splat. Why: at a partly covered edge, the partial fragments of a grazing surface can fill
-   * three layers and push out the fully covered surface behind them, which then lets the
-   * background through. In `splat_report`'s tables (512x384, CPU) 5 layers take the RMSE from
-   * 0.0140 to 0.0139 on the bunny seen whole, 0.0219 to 0.0216 on the armadillo's points and
-   * 0.0665 to 0.0661 on the checkerboard, in about the same time (8 layers gain at most 0.2 %
-   * more, slower). Minified splats, thinner in depth than a pixel's stretch of a grazing
-   * surface, split it into a fragment per z threshold, and more layers would blend more of
-   * those slices of one surface over each other: on the 1 M-surfel sphere seen whole 3 layers
-   * give 0.00088, 5 give 0.00104. On the CPU a layer holds 36 bytes per pixel, and 60 more in
-   * frames that sum minified splats per pixel (colors): at 1920x1080 5 layers take 356 MB, or
-   * 949 MB with the sums, against 214 and 569 MB for 3. GetLastNumberOfLayers() tells what the last
-   * render kept (1 for an opaque input without edge antialiasing).
+   * see SetMinifiedVariance) and in opaque EWA frames whose splats are magnified well past a
+   * pixel (a median warped variance of 16 pixels^2 or more: scans seen close, where 5 layers
+   * gain nothing and cost about 5 % of the time); on OpenGL the paper's 3, since each layer is
+   * a pass over every splat. Why: at a partly covered edge, the partial fragments of a grazing
+   * surface can fill three layers and push out the fully covered surface behind them, which
+   * then lets the background through. In `splat_report`'s tables (512x384, CPU) 5 layers take
+   * the RMSE from 0.0140 to 0.0139 on the bunny seen whole, 0.0219 to 0.0216 on the armadillo's
+   * points and 0.0665 to 0.0661 on the checkerboard, in about the same time (8 layers gain at
+   * most 0.2 % more, slower). Minified splats, thinner in depth than a pixel's stretch of a
+   * grazing surface, split it into a fragment per z threshold, and more layers would blend
+   * more of those slices of one surface over each other: on the 1 M-surfel sphere seen whole
+   * 3 layers give 0.00088, 5 give 0.00104. On the CPU a layer holds 36 bytes per pixel, and 60
+   * more in frames that sum minified splats per pixel (colors): at 1920x1080 5 layers take
+   * 356 MB, or 949 MB with the sums, against 214 and 569 MB for 3. GetLastNumberOfLayers()
+   * tells what the last render kept (1 for an opaque input without edge antialiasing).
    */
   void SetNumberOfLayers(int layers);
   int GetNumberOfLayers();

@@ -94,8 +94,8 @@ public:
 
   /// The paper's fragments per pixel.
   static constexpr int PaperLayers = 3;
-  /// What NumberOfLayers 0 gives a frame whose splats are not minified surfels drawn each with
-  /// its own kernel.
+  /// What NumberOfLayers 0 gives a frame whose splats are neither minified surfels drawn each
+  /// with its own kernel nor opaque splats magnified well past a pixel.
   static constexpr int AutomaticLayers = 5;
 
   /**

@@ -597,8 +597,9 @@ TEST(MinifiedSplats, TranslucentSplatsAreNotMinified)
 }
 
 // Automatic layers: the paper's 3 where minified splats each draw their own kernel (slices of
-// a grazing surface would fill more), 5 in other frames, 1 for an opaque frame without edge
-// antialiasing; a count set by hand holds everywhere.
+// a grazing surface would fill more) and where opaque EWA splats are magnified well past a
+// pixel, 5 in other frames, 1 for an opaque frame without edge antialiasing; a count set by
+// hand holds everywhere.
 TEST(MinifiedSplats, AutomaticLayersFollowTheFramesPath)
 {
   const SurfelGrid grid = SurfelSphere(100000, 0.3, glm::dvec3(0.0));
@@ -628,4 +629,20 @@ TEST(MinifiedSplats, AutomaticLayersFollowTheFramesPath)
   rasterizer->SetMinifiedVariance(0.75);
   rasterizer->SetNumberOfLayers(2);
   EXPECT_EQ(layersOf(), 2);
+
+  // 200 surfels on the same sphere: splats about 20 pixels wide.
+  SurfelGrid few = SurfelSphere(200, 0.3, glm::dvec3(0.0));
+  rasterizer->SetNumberOfLayers(0);
+  auto magnifiedLayers = [&]()
+  {
+    rasterizer->Render(few.View(), camera, lights, material);
+    EXPECT_EQ(rasterizer->GetMinifiedCount(), 0);
+    return rasterizer->GetLastNumberOfLayers();
+  };
+  EXPECT_EQ(magnifiedLayers(), vtkSurfaceSplatRasterizer::PaperLayers);
+  rasterizer->SetFilter(splat::KernelFilter::Circular);
+  EXPECT_EQ(magnifiedLayers(), vtkSurfaceSplatRasterizer::AutomaticLayers);
+  rasterizer->SetFilter(splat::KernelFilter::EWA);
+  few.Opacities.assign(200, 0.5f);
+  EXPECT_EQ(magnifiedLayers(), vtkSurfaceSplatRasterizer::AutomaticLayers);
 }
