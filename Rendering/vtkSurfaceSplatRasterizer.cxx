@@ -488,8 +488,8 @@ void vtkSurfaceSplatRasterizer::Splat(const Surfels& surfels, const Camera& came
   // shows its own back side first). Otherwise one fragment per pixel. Automatic: minified
   // splats drawn with their own kernels are thinner in depth than a pixel's stretch of a
   // grazing surface, which they split into a fragment per z threshold; further layers would
-  // keep more of those slices of one surface and blend them over each other. Opaque splats
-  // EWA splats magnified well past a pixel need no more than the paper's layers
+  // keep more of those slices of one surface and blend them over each other. Opaque EWA
+  // splats magnified well past a pixel need no more than the paper's layers
   // (MagnifiedVariance).
   if (translucent || this->EdgeAntialiasing)
   {
